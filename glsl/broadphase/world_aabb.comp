@@ -1,0 +1,25 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// World AABB of every body from its shape's local AABB: the centre is carried by the pose,
+// the half extents by |R| (the sum of |column k| * h_k), which bounds the rotated box
+// exactly. Dead slots get an empty (inverted) box so nothing can overlap them.
+#include "world.glsl"
+#include "quat.glsl"
+
+void main()
+{
+    uint i = body_thread_index();
+    if (i >= params.counts.x) return;
+    if (!body_is(i, TB_BODY_FLAG_ALIVE)) {
+        body_aabb_min[i] = vec4(3.0e38);
+        body_aabb_max[i] = vec4(-3.0e38);
+        return;
+    }
+    tb_gpu_shape shape = shapes[body_info[i].x];
+    mat3 r = quat_to_mat3(body_rot[i]);
+    vec3 h = shape.aabb_half.xyz;
+    vec3 centre = body_pos[i].xyz + r * shape.aabb_center.xyz;
+    vec3 extent = abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
+    body_aabb_min[i] = vec4(centre - extent, 0.0);
+    body_aabb_max[i] = vec4(centre + extent, 0.0);
+}

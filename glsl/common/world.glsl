@@ -1,0 +1,34 @@
+// The world's descriptor set as every stage sees it, and the per-body thread index.
+// Layouts come from layout.h, shared with the C core.
+#ifndef TB_WORLD_GLSL
+#define TB_WORLD_GLSL
+
+#include "layout.h"
+
+layout(local_size_x_id = TB_SPEC_WORKGROUP_SIZE) in;
+layout(constant_id = TB_SPEC_SUBGROUP_SIZE) const uint SUBGROUP_SIZE = 32;
+
+layout(set = 0, binding = TB_BIND_PARAMS, std140) uniform Params { tb_gpu_params params; };
+layout(set = 0, binding = TB_BIND_BODY_POS, std430) buffer BodyPos { vec4 body_pos[]; };
+layout(set = 0, binding = TB_BIND_BODY_ROT, std430) buffer BodyRot { vec4 body_rot[]; };
+layout(set = 0, binding = TB_BIND_BODY_LINVEL, std430) buffer BodyLinVel { vec4 body_linvel[]; };
+layout(set = 0, binding = TB_BIND_BODY_ANGVEL, std430) buffer BodyAngVel { vec4 body_angvel[]; };
+layout(set = 0, binding = TB_BIND_BODY_INV_INERTIA, std430) readonly buffer BodyInvInertia { vec4 body_inv_inertia[]; };
+layout(set = 0, binding = TB_BIND_BODY_INFO, std430) readonly buffer BodyInfo { uvec4 body_info[]; };
+layout(set = 0, binding = TB_BIND_BODY_AABB_MIN, std430) buffer BodyAabbMin { vec4 body_aabb_min[]; };
+layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { vec4 body_aabb_max[]; };
+layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
+
+// Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
+uint body_thread_index()
+{
+    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+}
+
+bool body_is(uint i, uint flags)
+{
+    return (body_info[i].y & flags) == flags;
+}
+
+#endif

@@ -1,0 +1,303 @@
+/* Tumble: a rigid-body physics engine whose whole step runs on the GPU as Vulkan compute.
+ *
+ * This is the only header users include. Plain C99, no Vulkan types.
+ *
+ * Conventions
+ * - Units are SI: metres, kilograms, seconds, radians. Gravity defaults to (0, -9.81, 0).
+ * - Every fallible call returns tb_result; on failure the world is unchanged and
+ *   tb_world_last_error() holds a sentence that says what was wrong.
+ * - Ids are small values (index + generation). A destroyed body's id becomes stale and is
+ *   rejected with TB_ERROR_STALE_ID, never dereferenced. The zero id is null.
+ * - Definitions are initialised with their tb_default_*_def() function and then edited.
+ *   A def that did not come from its default function is rejected.
+ * - Threads: a world is used from one thread at a time. Different worlds are independent.
+ */
+#ifndef TUMBLE_H
+#define TUMBLE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(TB_BUILDING_LIBRARY) && defined(__GNUC__)
+#define TB_API __attribute__((visibility("default")))
+#else
+#define TB_API
+#endif
+
+/* ---------------------------------------------------------------------------------------
+ * Basic types
+ */
+
+typedef struct tb_vec3 { float x, y, z; } tb_vec3;
+
+/// Rotation quaternion (x, y, z, w); w is the scalar part. Identity is (0, 0, 0, 1).
+typedef struct tb_quat { float x, y, z, w; } tb_quat;
+
+/// Result codes. Pinned to 32 bits; new codes are only ever appended.
+typedef enum tb_result {
+    TB_OK = 0,
+    TB_ERROR_INVALID_ARGUMENT = 1, ///< NaN/inf, negative mass, zero size, dt <= 0, bad def
+    TB_ERROR_INVALID_ID = 2,       ///< null id, or an id that never existed in this world
+    TB_ERROR_STALE_ID = 3,         ///< id of a destroyed body or shape
+    TB_ERROR_CAPACITY = 4,         ///< a limit set in tb_world_def would be exceeded
+    TB_ERROR_OUT_OF_MEMORY = 5,    ///< host or device memory could not be allocated
+    TB_ERROR_NO_DEVICE = 6,        ///< no Vulkan device (or none matching TUMBLE_DEVICE)
+    TB_ERROR_DEVICE = 7,           ///< a Vulkan call failed (device lost, driver error)
+    TB_ERROR_IN_USE = 8,           ///< the object is still referenced (a shape used by bodies)
+    TB_RESULT_FORCE_32 = 0x7fffffff
+} tb_result;
+
+/// Sentence naming a result code ("invalid argument", ...). Never NULL.
+TB_API const char* tb_result_string(tb_result result);
+
+typedef struct tb_world tb_world;
+
+/// Body id: 1-based slot index, owning world's serial, generation of the slot.
+typedef struct tb_body_id { uint32_t index1; uint16_t world; uint16_t generation; } tb_body_id;
+/// Shape id, same scheme as tb_body_id.
+typedef struct tb_shape_id { uint32_t index1; uint16_t world; uint16_t generation; } tb_shape_id;
+
+static const tb_body_id tb_null_body = { 0, 0, 0 };
+static const tb_shape_id tb_null_shape = { 0, 0, 0 };
+
+/* ---------------------------------------------------------------------------------------
+ * World
+ */
+
+typedef enum tb_log_level {
+    TB_LOG_DEBUG = 0, TB_LOG_INFO = 1, TB_LOG_WARNING = 2, TB_LOG_ERROR = 3,
+    TB_LOG_LEVEL_FORCE_32 = 0x7fffffff
+} tb_log_level;
+
+/// Log sink. Called from the thread that made the call which logs. `message` is one line.
+typedef void tb_log_fn(void* user, tb_log_level level, const char* message);
+
+typedef struct tb_world_def {
+    /// Gravity acceleration, m/s^2. Default (0, -9.81, 0).
+    tb_vec3 gravity;
+    /// Bodies the GPU buffers hold at first; they grow (doubling) as bodies are added.
+    /// Growth re-records the step's command buffer, so set this near the expected count.
+    /// Default 1024.
+    uint32_t initial_body_capacity;
+    /// Hard limit on live bodies; creating more fails with TB_ERROR_CAPACITY.
+    /// 0 means the default, 16777216 (2^24).
+    uint32_t max_bodies;
+    /// Hard limit on live shapes. 0 means the default, 1048576.
+    uint32_t max_shapes;
+    /// Largest rotation a body may make in one step, radians. Faster spins are clamped for
+    /// the orientation update (their stored angular velocity is kept). Default pi/4.
+    float max_rotation_per_step;
+    /// Device choice: an index into the Vulkan device list, or a case-insensitive substring
+    /// of the device name. NULL: the TUMBLE_DEVICE environment variable, else a discrete
+    /// GPU, else any GPU, else a CPU device (lavapipe).
+    const char* device;
+    /// Enable the Khronos validation layer (with synchronization validation). Its messages
+    /// go to the log callback and are counted in tb_world_stats.validation_messages.
+    /// Also enabled by the environment variable TUMBLE_VALIDATION=1.
+    int validation;
+    /// Optional file for the Vulkan pipeline cache: read at creation when its header matches
+    /// this device, written at destruction. NULL: no file.
+    const char* pipeline_cache_path;
+    /// Log callback and its user pointer. NULL: warnings and errors go to stderr.
+    tb_log_fn* log;
+    void* log_user;
+    /// Internal: set by tb_default_world_def(). Do not touch.
+    int32_t internal_cookie;
+} tb_world_def;
+
+TB_API tb_world_def tb_default_world_def(void);
+
+/// Create a world on a Vulkan device. On failure *out is NULL and
+/// tb_world_last_error(NULL) says why.
+TB_API tb_result tb_world_create(const tb_world_def* def, tb_world** out);
+
+/// Destroy the world and everything in it. NULL is ignored.
+TB_API void tb_world_destroy(tb_world* world);
+
+/// Last error message for this world, or, with NULL, of the last failed tb_world_create
+/// on this thread. Empty string when there was none.
+TB_API const char* tb_world_last_error(const tb_world* world);
+
+/// Gravity, m/s^2. Takes effect at the next step; does not re-record anything.
+TB_API tb_result tb_world_set_gravity(tb_world* world, tb_vec3 gravity);
+TB_API tb_vec3 tb_world_get_gravity(const tb_world* world);
+
+/// Advance the simulation by dt seconds (usually 1/60). One queue submission; returns when
+/// the GPU has finished the step. dt must be finite and > 0.
+TB_API tb_result tb_world_step(tb_world* world, float dt);
+
+/// Advance n steps of dt in one queue submission. Equal to n calls of tb_world_step.
+TB_API tb_result tb_world_step_n(tb_world* world, float dt, uint32_t n);
+
+typedef struct tb_device_info {
+    char name[256];           ///< e.g. "NVIDIA H100 80GB HBM3", "llvmpipe (LLVM 15.0.6, 256 bits)"
+    char driver[256];         ///< driver name and version text
+    uint32_t vendor_id;
+    uint32_t device_id;
+    uint32_t api_version;     ///< VK_MAKE_API_VERSION encoding
+    uint32_t subgroup_size;   ///< 8 on lavapipe, 32 on NVIDIA, 64 on AMD
+    int is_cpu;               ///< 1 for a CPU implementation (lavapipe)
+} tb_device_info;
+
+TB_API tb_result tb_world_device_info(const tb_world* world, tb_device_info* out);
+
+/// Stage timings and counts, as of the last completed step.
+#define TB_MAX_STAGES 32
+typedef struct tb_stage_time {
+    const char* name;   ///< stage name, equal to its shader's name ("integrate/integrate")
+    double ms;          ///< GPU time of the stage in the last step, milliseconds
+} tb_stage_time;
+
+typedef struct tb_world_stats {
+    uint32_t body_count;          ///< live bodies
+    uint32_t body_capacity;       ///< bodies the GPU buffers hold now
+    uint32_t shape_count;         ///< live shapes
+    uint64_t steps;               ///< steps taken since creation
+    uint64_t submits;             ///< queue submissions of step work since creation
+    uint64_t records;             ///< times the step command buffer was recorded
+    uint64_t buffer_growths;      ///< times a GPU buffer was grown
+    uint64_t validation_messages; ///< validation layer messages (warnings and errors)
+    double gpu_ms;                ///< GPU time of the last step, first to last stage
+    uint32_t stage_count;
+    tb_stage_time stages[TB_MAX_STAGES];
+} tb_world_stats;
+
+TB_API tb_result tb_world_get_stats(const tb_world* world, tb_world_stats* out);
+
+/* ---------------------------------------------------------------------------------------
+ * Shapes
+ *
+ * A shape is geometry plus material, shared by any number of bodies. Its local frame is the
+ * body's frame: the body's position is the shape's origin.
+ */
+
+typedef enum tb_shape_type {
+    TB_SHAPE_SPHERE = 0,
+    TB_SHAPE_BOX = 1,
+    TB_SHAPE_PLANE = 2,
+    TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
+} tb_shape_type;
+
+typedef struct tb_shape_def {
+    /// Mass per volume, kg/m^3; used when a body gives no mass. Default 1000 (water).
+    float density;
+    /// Coulomb friction coefficient, >= 0. Default 0.6.
+    float friction;
+    /// Restitution (bounciness) in [0, 1]. Default 0.
+    float restitution;
+    /// Internal: set by tb_default_shape_def(). Do not touch.
+    int32_t internal_cookie;
+} tb_shape_def;
+
+TB_API tb_shape_def tb_default_shape_def(void);
+
+/// Sphere of the given radius (> 0) centred on the body's origin.
+TB_API tb_result tb_shape_create_sphere(tb_world* world, const tb_shape_def* def, float radius,
+                                        tb_shape_id* out);
+/// Box with the given half extents (each > 0) centred on the body's origin.
+TB_API tb_result tb_shape_create_box(tb_world* world, const tb_shape_def* def,
+                                     tb_vec3 half_extents, tb_shape_id* out);
+/// Half-space { p : dot(normal, p) <= offset } in body coordinates; its surface is the plane.
+/// normal must be non-zero (it is normalised). Planes have no volume: only static bodies
+/// may use them.
+TB_API tb_result tb_shape_create_plane(tb_world* world, const tb_shape_def* def, tb_vec3 normal,
+                                       float offset, tb_shape_id* out);
+/// Destroy a shape. Fails with TB_ERROR_IN_USE while a body uses it.
+TB_API tb_result tb_shape_destroy(tb_world* world, tb_shape_id shape);
+TB_API int tb_shape_is_valid(const tb_world* world, tb_shape_id shape);
+TB_API tb_result tb_shape_get_type(const tb_world* world, tb_shape_id shape, tb_shape_type* out);
+
+/* ---------------------------------------------------------------------------------------
+ * Bodies
+ */
+
+typedef enum tb_body_type {
+    TB_BODY_STATIC = 0,  ///< never moves, infinite mass (mass 0 in Bullet's terms)
+    TB_BODY_DYNAMIC = 1, ///< moved by gravity, forces, impulses and contacts
+    TB_BODY_TYPE_FORCE_32 = 0x7fffffff
+} tb_body_type;
+
+typedef struct tb_body_def {
+    /// Default TB_BODY_DYNAMIC.
+    tb_body_type type;
+    /// Required: the body's shape.
+    tb_shape_id shape;
+    /// Position of the body's origin in world space, m. Default origin.
+    tb_vec3 position;
+    /// Orientation. Must be unit length within 1e-3 (it is then normalised); further off is
+    /// rejected. Default identity.
+    tb_quat rotation;
+    /// m/s, world frame. Default zero.
+    tb_vec3 linear_velocity;
+    /// rad/s, world frame. Default zero.
+    tb_vec3 angular_velocity;
+    /// kg. 0: from the shape's volume and density. Must not be negative. Ignored for static.
+    float mass;
+    /// Principal moments of inertia about the body's axes, kg m^2. All 0: from the shape
+    /// (scaled to the mass). Otherwise each must be > 0.
+    tb_vec3 inertia;
+    /// Linear and angular damping rates, 1/s, >= 0: velocity is scaled by 1/(1 + dt*rate)
+    /// each step. Default 0 (none).
+    float linear_damping;
+    float angular_damping;
+    /// Multiplier on the world's gravity for this body. Default 1.
+    float gravity_scale;
+    /// Returned by tb_body_get_user_data. Default NULL.
+    void* user_data;
+    /// Internal: set by tb_default_body_def(). Do not touch.
+    int32_t internal_cookie;
+} tb_body_def;
+
+TB_API tb_body_def tb_default_body_def(void);
+
+/// Create one body. The body exists on the GPU from the next step on.
+TB_API tb_result tb_body_create(tb_world* world, const tb_body_def* def, tb_body_id* out);
+
+/// Create `count` bodies in one call (all or none: if any def is bad, none is created and
+/// the error names the first bad index). out_ids receives count ids.
+TB_API tb_result tb_body_create_many(tb_world* world, const tb_body_def* defs, uint32_t count,
+                                     tb_body_id* out_ids);
+
+TB_API tb_result tb_body_destroy(tb_world* world, tb_body_id body);
+TB_API int tb_body_is_valid(const tb_world* world, tb_body_id body);
+
+TB_API tb_result tb_body_set_pose(tb_world* world, tb_body_id body, tb_vec3 position,
+                                  tb_quat rotation);
+TB_API tb_result tb_body_get_pose(tb_world* world, tb_body_id body, tb_vec3* position,
+                                  tb_quat* rotation);
+TB_API tb_result tb_body_set_velocity(tb_world* world, tb_body_id body, tb_vec3 linear,
+                                      tb_vec3 angular);
+TB_API tb_result tb_body_get_velocity(tb_world* world, tb_body_id body, tb_vec3* linear,
+                                      tb_vec3* angular);
+/// Apply an impulse (N s) at a world point; changes linear and angular velocity at once.
+/// No effect on static bodies (returns TB_OK).
+TB_API tb_result tb_body_apply_impulse(tb_world* world, tb_body_id body, tb_vec3 impulse,
+                                       tb_vec3 world_point);
+/// Mass (kg, 0 for static) and principal inertia (kg m^2) the body was given.
+TB_API tb_result tb_body_get_mass(const tb_world* world, tb_body_id body, float* mass,
+                                  tb_vec3* inertia);
+TB_API tb_result tb_body_get_type(const tb_world* world, tb_body_id body, tb_body_type* out);
+TB_API void* tb_body_get_user_data(const tb_world* world, tb_body_id body);
+
+/// Read the poses of `count` bodies into caller arrays (either may be NULL). One GPU
+/// read-back serves any number of reads until the next step or write.
+TB_API tb_result tb_world_read_transforms(tb_world* world, const tb_body_id* ids,
+                                          uint32_t count, tb_vec3* positions,
+                                          tb_quat* rotations);
+
+/// World-space AABBs of `count` bodies as computed by the last step (zero before the
+/// first step that saw the body). Either array may be NULL.
+TB_API tb_result tb_world_read_aabbs(tb_world* world, const tb_body_id* ids, uint32_t count,
+                                     tb_vec3* mins, tb_vec3* maxs);
+
+/// Ids of live bodies in slot order; returns how many were written (at most `capacity`).
+TB_API uint32_t tb_world_body_ids(const tb_world* world, tb_body_id* out, uint32_t capacity);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* TUMBLE_H */

@@ -1,0 +1,32 @@
+/* Argument checks shared by the API calls. */
+#include <math.h>
+
+#include "api/world.h"
+
+#define ROTATION_TOLERANCE 1e-3f
+
+int tb_finite3(tb_vec3 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+int tb_finite_quat(tb_quat q)
+{
+    return isfinite(q.x) && isfinite(q.y) && isfinite(q.z) && isfinite(q.w);
+}
+
+tb_result tb_check_rotation(tb_diag* diag, tb_quat q, tb_quat* out, const char* what)
+{
+    if (!tb_finite_quat(q))
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s: rotation is not finite", what);
+    double len = sqrt((double)q.x * q.x + (double)q.y * q.y + (double)q.z * q.z + (double)q.w * q.w);
+    if (fabs(len - 1.0) > ROTATION_TOLERANCE)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT,
+                       "%s: rotation quaternion has length %g, not 1 (tolerance %g)", what, len,
+                       (double)ROTATION_TOLERANCE);
+    out->x = (float)(q.x / len);
+    out->y = (float)(q.y / len);
+    out->z = (float)(q.z / len);
+    out->w = (float)(q.w / len);
+    return TB_OK;
+}

@@ -1,0 +1,67 @@
+#include "api/diag.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+#if defined(__GNUC__)
+static __thread char create_error[TB_MESSAGE_SIZE];
+#else
+static char create_error[TB_MESSAGE_SIZE];
+#endif
+
+static const char* const level_names[] = { "debug", "info", "warning", "error" };
+
+static void log_line(tb_diag* diag, tb_log_level level, const char* line)
+{
+    if (diag->log) {
+        diag->log(diag->log_user, level, line);
+    } else if (level >= TB_LOG_WARNING) {
+        fprintf(stderr, "tumble %s: %s\n", level_names[level], line);
+    }
+}
+
+tb_result tb_fail(tb_diag* diag, tb_result result, const char* fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(diag->message, sizeof diag->message, fmt, args);
+    va_end(args);
+    log_line(diag, TB_LOG_INFO, diag->message);
+    return result;
+}
+
+void tb_log(tb_diag* diag, tb_log_level level, const char* fmt, ...)
+{
+    char line[TB_MESSAGE_SIZE * 2];
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(line, sizeof line, fmt, args);
+    va_end(args);
+    log_line(diag, level, line);
+}
+
+void tb_diag_set_create_error(const char* message)
+{
+    snprintf(create_error, sizeof create_error, "%s", message);
+}
+
+const char* tb_diag_create_error(void)
+{
+    return create_error;
+}
+
+const char* tb_result_string(tb_result result)
+{
+    switch (result) {
+    case TB_OK: return "success";
+    case TB_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case TB_ERROR_INVALID_ID: return "invalid id";
+    case TB_ERROR_STALE_ID: return "stale id (the object was destroyed)";
+    case TB_ERROR_CAPACITY: return "capacity exhausted";
+    case TB_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case TB_ERROR_NO_DEVICE: return "no suitable Vulkan device";
+    case TB_ERROR_DEVICE: return "Vulkan device error";
+    case TB_ERROR_IN_USE: return "object in use";
+    default: return "unknown result code";
+    }
+}

@@ -1,0 +1,172 @@
+/* Shapes: geometry + material, mass properties per unit mass, the GPU shape table. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "api/world.h"
+
+#define PI 3.14159265358979323846
+
+tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r)
+{
+    if (id.index1 == 0 || id.world != w->serial || id.index1 > w->shape_slots.used) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ID, "shape id {%u, %u, %u} does not name a shape "
+                     "of this world", id.index1, id.world, id.generation);
+        return NULL;
+    }
+    tb_shape_record* s = &w->shapes[id.index1 - 1];
+    if (!s->alive || s->generation != id.generation) {
+        *r = tb_fail(&w->diag, TB_ERROR_STALE_ID, "shape id {%u, %u, %u} is stale: the shape was "
+                     "destroyed", id.index1, id.world, id.generation);
+        return NULL;
+    }
+    *slot = id.index1 - 1;
+    *r = TB_OK;
+    return s;
+}
+
+static tb_result check_material(tb_world* w, const tb_shape_def* def)
+{
+    if (!def || def->internal_cookie != TB_DEF_COOKIE)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT,
+                       "shape def was not initialised with tb_default_shape_def()");
+    if (!isfinite(def->density) || def->density < 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "density must be finite and >= 0, not %g",
+                       (double)def->density);
+    if (!isfinite(def->friction) || def->friction < 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "friction must be finite and >= 0, not %g",
+                       (double)def->friction);
+    if (!isfinite(def->restitution) || def->restitution < 0 || def->restitution > 1)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "restitution must be in [0, 1], not %g",
+                       (double)def->restitution);
+    return TB_OK;
+}
+
+static tb_result grow_shape_table(tb_world* w, uint32_t needed)
+{
+    if (needed <= w->shape_table_capacity) return TB_OK;
+    uint32_t cap = w->shape_table_capacity ? w->shape_table_capacity * 2 : 16;
+    while (cap < needed) cap *= 2;
+    tb_shape_record* records = realloc(w->shapes, cap * sizeof *records);
+    if (records) w->shapes = records;
+    tb_gpu_shape* gpu = realloc(w->gpu_shapes, cap * sizeof *gpu);
+    if (gpu) w->gpu_shapes = gpu;
+    if (!records || !gpu) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    uint32_t old = w->shape_table_capacity;
+    memset(w->shapes + old, 0, (cap - old) * sizeof *records);
+    memset(w->gpu_shapes + old, 0, (cap - old) * sizeof *gpu);
+    w->shape_table_capacity = cap;
+    return TB_OK;
+}
+
+/* Take a slot and fill both the host record and the GPU entry. */
+static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_gpu_shape* gpu,
+                           tb_shape_id* out)
+{
+    if (w->shape_slots.live >= w->max_shapes)
+        return tb_fail(&w->diag, TB_ERROR_CAPACITY, "the world holds at most %u shapes "
+                       "(tb_world_def.max_shapes)", w->max_shapes);
+    if (!w->shape_slots.free_count && grow_shape_table(w, w->shape_slots.used + 1))
+        return TB_ERROR_OUT_OF_MEMORY;
+    uint32_t slot;
+    tb_slots_take(&w->shape_slots, &slot);
+    uint16_t generation = (uint16_t)(w->shapes[slot].generation + 1);
+    w->shapes[slot] = *record;
+    w->shapes[slot].generation = generation ? generation : 1;
+    w->shapes[slot].alive = 1;
+    w->gpu_shapes[slot] = *gpu;
+    w->shapes_dirty = 1;
+    *out = (tb_shape_id){ slot + 1, w->serial, w->shapes[slot].generation };
+    return TB_OK;
+}
+
+static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
+{
+    tb_gpu_shape s;
+    memset(&s, 0, sizeof s);
+    s.aabb_half = (tb_gpu_vec4){ half.x, half.y, half.z, 0.0f };
+    s.params = params;
+    s.info.x = type;
+    return s;
+}
+
+tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float radius,
+                                 tb_shape_id* out)
+{
+    tb_result r = check_material(w, def);
+    if (r) return r;
+    if (!isfinite(radius) || radius <= 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "sphere radius must be finite and > 0, "
+                       "not %g", (double)radius);
+    double r2 = (double)radius * radius;
+    tb_shape_record rec = { .type = TB_SHAPE_SPHERE, .material = *def,
+                            .volume = (float)(4.0 / 3.0 * PI * r2 * radius) };
+    rec.unit_inertia = (tb_vec3){ (float)(0.4 * r2), (float)(0.4 * r2), (float)(0.4 * r2) };
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_SPHERE, (tb_vec3){ radius, radius, radius },
+                                 (tb_gpu_vec4){ radius, 0, 0, 0 });
+    return add_shape(w, &rec, &gpu, out);
+}
+
+tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, tb_shape_id* out)
+{
+    tb_result r = check_material(w, def);
+    if (r) return r;
+    if (!tb_finite3(h) || h.x <= 0 || h.y <= 0 || h.z <= 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box half extents must be finite and "
+                       "> 0, not (%g, %g, %g)", (double)h.x, (double)h.y, (double)h.z);
+    double x2 = (double)h.x * h.x, y2 = (double)h.y * h.y, z2 = (double)h.z * h.z;
+    tb_shape_record rec = { .type = TB_SHAPE_BOX, .material = *def,
+                            .volume = (float)(8.0 * h.x * h.y * h.z) };
+    rec.unit_inertia = (tb_vec3){ (float)((y2 + z2) / 3), (float)((x2 + z2) / 3),
+                                  (float)((x2 + y2) / 3) };
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_BOX, h, (tb_gpu_vec4){ h.x, h.y, h.z, 0 });
+    return add_shape(w, &rec, &gpu, out);
+}
+
+tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
+                                tb_shape_id* out)
+{
+    tb_result r = check_material(w, def);
+    if (r) return r;
+    double len = sqrt((double)n.x * n.x + (double)n.y * n.y + (double)n.z * n.z);
+    if (!tb_finite3(n) || !isfinite(offset) || !(len > 1e-12) || !isfinite(len))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "plane needs a finite non-zero normal "
+                       "and a finite offset");
+    tb_shape_record rec = { .type = TB_SHAPE_PLANE, .material = *def };
+    const float big = (float)TB_UNBOUNDED_EXTENT;
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_PLANE, (tb_vec3){ big, big, big },
+                                 (tb_gpu_vec4){ (float)(n.x / len), (float)(n.y / len),
+                                                (float)(n.z / len), offset });
+    return add_shape(w, &rec, &gpu, out);
+}
+
+tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
+{
+    uint32_t slot;
+    tb_result r;
+    tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
+    if (!s) return r;
+    if (s->users)
+        return tb_fail(&w->diag, TB_ERROR_IN_USE, "shape is used by %u bodies; destroy them first",
+                       s->users);
+    s->alive = 0;
+    tb_slots_give(&w->shape_slots, slot);
+    return TB_OK;
+}
+
+int tb_shape_is_valid(const tb_world* w, tb_shape_id id)
+{
+    if (!w || id.index1 == 0 || id.world != w->serial || id.index1 > w->shape_slots.used) return 0;
+    const tb_shape_record* s = &w->shapes[id.index1 - 1];
+    return s->alive && s->generation == id.generation;
+}
+
+tb_result tb_shape_get_type(const tb_world* cw, tb_shape_id id, tb_shape_type* out)
+{
+    tb_world* w = (tb_world*)cw;
+    uint32_t slot;
+    tb_result r;
+    tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
+    if (s && out) *out = s->type;
+    return r;
+}

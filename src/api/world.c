@@ -1,0 +1,281 @@
+/* The world: creation, the step, stats. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "api/world.h"
+
+#define DEFAULT_MAX_BODIES (1u << 24)
+#define DEFAULT_MAX_SHAPES (1u << 20)
+#define INITIAL_SHAPE_CAPACITY 16u
+
+/* The step, in order. Names are shader paths under glsl/ and the keys of the stats. */
+static const struct { const char* shader; tb_dispatch_rule rule; } step_stages[TB_STAGE_COUNT] = {
+    [TB_STAGE_APPLY_FORCES] = { "integrate/apply_forces", TB_DISPATCH_PER_BODY },
+    [TB_STAGE_INTEGRATE] = { "integrate/integrate", TB_DISPATCH_PER_BODY },
+    [TB_STAGE_WORLD_AABB] = { "broadphase/world_aabb", TB_DISPATCH_PER_BODY },
+};
+
+static uint16_t next_world_serial(void)
+{
+    static uint16_t serial;
+    uint16_t s = __atomic_add_fetch(&serial, 1, __ATOMIC_RELAXED);
+    return s ? s : __atomic_add_fetch(&serial, 1, __ATOMIC_RELAXED);
+}
+
+static tb_result check_world_def(tb_diag* diag, const tb_world_def* def)
+{
+    if (!def || def->internal_cookie != TB_DEF_COOKIE)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT,
+                       "world def was not initialised with tb_default_world_def()");
+    if (!tb_finite3(def->gravity))
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    if (!isfinite(def->max_rotation_per_step) || def->max_rotation_per_step <= 0)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "max_rotation_per_step must be finite "
+                       "and > 0, not %g", (double)def->max_rotation_per_step);
+    return TB_OK;
+}
+
+static int env_flag(const char* name)
+{
+    const char* v = getenv(name);
+    return v && *v && strcmp(v, "0") != 0;
+}
+
+static tb_result create_shape_buffer(tb_world* w, uint32_t capacity)
+{
+    tb_buffer_destroy(&w->memory, &w->shape_buffer);
+    tb_result r = tb_buffer_create(&w->memory, capacity * sizeof(tb_gpu_shape),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &w->shape_buffer);
+    if (r) return r;
+    w->shape_buffer_capacity = capacity;
+    tb_pipelines_bind(&w->pipelines, TB_BIND_SHAPES, w->shape_buffer.buffer);
+    tb_graph_invalidate(&w->graph);
+    w->shapes_dirty = 1;
+    return TB_OK;
+}
+
+static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def)
+{
+    tb_gpu_options options = { def->device, def->validation || env_flag("TUMBLE_VALIDATION") };
+    tb_result r = tb_gpu_create(&w->gpu, &options, &w->diag);
+    if (!r) r = tb_memory_init(&w->memory, &w->gpu);
+    if (!r) r = tb_pipelines_init(&w->pipelines, &w->gpu, def->pipeline_cache_path);
+    if (!r) r = tb_transfer_init(&w->transfer, &w->memory);
+    if (!r) r = tb_graph_init(&w->graph, &w->gpu, &w->pipelines);
+    if (!r) r = tb_buffer_create(&w->memory, sizeof(tb_gpu_params),
+                                 VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &w->params_buffer);
+    if (r) return r;
+    tb_pipelines_bind(&w->pipelines, TB_BIND_PARAMS, w->params_buffer.buffer);
+    r = create_shape_buffer(w, INITIAL_SHAPE_CAPACITY);
+    if (!r) r = tb_body_store_init(&w->store, &w->memory, &w->pipelines, &w->transfer,
+                                   def->initial_body_capacity);
+    for (uint32_t i = 0; i < TB_STAGE_COUNT && !r; i++)
+        r = tb_graph_append_shader(&w->graph, step_stages[i].shader, step_stages[i].rule);
+    return r;
+}
+
+tb_result tb_world_create(const tb_world_def* def, tb_world** out)
+{
+    tb_diag early = { .log = def ? def->log : NULL, .log_user = def ? def->log_user : NULL };
+    if (!out) return tb_fail(&early, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = NULL;
+    tb_result r = check_world_def(&early, def);
+    tb_world* w = r ? NULL : calloc(1, sizeof *w);
+    if (!r && !w) r = tb_fail(&early, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    if (r) { tb_diag_set_create_error(early.message); return r; }
+    w->diag = early;
+    w->serial = next_world_serial();
+    w->gravity = def->gravity;
+    w->max_rotation_per_step = def->max_rotation_per_step;
+    w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
+    w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
+    r = create_gpu_objects(w, def);
+    if (r) {
+        tb_diag_set_create_error(w->diag.message);
+        tb_world_destroy(w);
+        return r;
+    }
+    tb_diag_set_create_error("");
+    *out = w;
+    return TB_OK;
+}
+
+void tb_world_destroy(tb_world* w)
+{
+    if (!w) return;
+    if (w->gpu.device) vkDeviceWaitIdle(w->gpu.device);
+    if (w->gpu.device) {
+        tb_graph_destroy(&w->graph);
+        tb_body_store_destroy(&w->store);
+        tb_buffer_destroy(&w->memory, &w->shape_buffer);
+        tb_buffer_destroy(&w->memory, &w->params_buffer);
+        tb_transfer_destroy(&w->transfer);
+        tb_pipelines_destroy(&w->pipelines);
+        tb_memory_destroy(&w->memory);
+    }
+    tb_gpu_destroy(&w->gpu);
+    tb_slots_free(&w->body_slots);
+    tb_slots_free(&w->shape_slots);
+    free(w->bodies);
+    free(w->shapes);
+    free(w->gpu_shapes);
+    free(w);
+}
+
+const char* tb_world_last_error(const tb_world* w)
+{
+    return w ? w->diag.message : tb_diag_create_error();
+}
+
+tb_result tb_world_set_gravity(tb_world* w, tb_vec3 gravity)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!tb_finite3(gravity)) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    w->gravity = gravity;
+    return TB_OK;
+}
+
+tb_vec3 tb_world_get_gravity(const tb_world* w)
+{
+    return w ? w->gravity : (tb_vec3){ 0, 0, 0 };
+}
+
+tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
+{
+    int grew = 0;
+    tb_result r = tb_body_store_reserve(&w->store, &w->transfer, slots, &grew);
+    if (grew) tb_graph_invalidate(&w->graph);
+    return r;
+}
+
+/* Per-body dispatches cover the slots in use; rows of groups keep x within the device limit. */
+static void write_params(tb_world* w, float dt)
+{
+    uint32_t slots = w->store.slots;
+    uint32_t groups = (slots + TB_WORKGROUP_SIZE - 1) / TB_WORKGROUP_SIZE;
+    uint32_t max_x = w->gpu.props.limits.maxComputeWorkGroupCount[0];
+    uint32_t x = groups < max_x ? groups : max_x;
+    tb_gpu_params* p = &w->params;
+    p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
+    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, 0, 0 };
+    p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
+    p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
+}
+
+static tb_result prepare_shapes(tb_world* w)
+{
+    if (w->shape_slots.used <= w->shape_buffer_capacity) return TB_OK;
+    uint32_t cap = w->shape_buffer_capacity * 2;
+    while (cap < w->shape_slots.used) cap *= 2;
+    return create_shape_buffer(w, cap);
+}
+
+/* Record this submission's uploads (params, shapes, dirty bodies) and, with a mask, the
+ * downloads of those body arrays that are stale. */
+static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const void** landing)
+{
+    VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
+    VkDeviceSize bytes = shape_bytes + tb_body_store_upload_bytes(&w->store) +
+                         tb_body_store_download_bytes(&w->store, mask) + 64;
+    tb_transfer* t = &w->transfer;
+    tb_result r = tb_transfer_begin(t, bytes);
+    if (r) return r;
+    write_params(w, dt);
+    vkCmdUpdateBuffer(t->cb, w->params_buffer.buffer, 0, sizeof w->params, &w->params);
+    if (shape_bytes) {
+        void* dst = tb_transfer_upload(t, w->shape_buffer.buffer, 0, shape_bytes);
+        if (dst) memcpy(dst, w->gpu_shapes, shape_bytes);
+        w->shapes_dirty = 0;
+    }
+    tb_body_store_record_uploads(&w->store, t);
+    if (mask) {
+        tb_transfer_barrier(t);
+        tb_body_store_record_downloads(&w->store, t, mask, landing);
+    }
+    return tb_transfer_end(t);
+}
+
+tb_result tb_world_fetch(tb_world* w, uint32_t mask)
+{
+    if (!(mask & ~w->store.fresh)) return TB_OK;
+    const void* landing[TB_ARRAY_COUNT] = { 0 };
+    tb_result r = prepare_shapes(w);
+    if (!r) r = record_transfer(w, 0.0f, mask, landing);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    if (!r) tb_body_store_take_downloads(&w->store, mask, landing);
+    return r;
+}
+
+static tb_result submit_steps(tb_world* w, uint32_t n)
+{
+    VkCommandBuffer* cbs = malloc(((size_t)n + 1) * sizeof *cbs);
+    if (!cbs) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    cbs[0] = w->transfer.cb;
+    for (uint32_t i = 1; i <= n; i++) cbs[i] = w->graph.cb;
+    tb_result r = tb_gpu_submit_wait(&w->gpu, cbs, n + 1);
+    free(cbs);
+    return r;
+}
+
+tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!isfinite(dt) || dt <= 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
+                       (double)dt);
+    if (n == 0) return TB_OK;
+    tb_result r = prepare_shapes(w);
+    if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);
+    if (!r) r = record_transfer(w, dt, 0, NULL);
+    if (!r) r = submit_steps(w, n);
+    if (r) return r;
+    tb_body_store_stepped(&w->store);
+    w->steps += n;
+    w->submits++;
+    tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
+    return TB_OK;
+}
+
+tb_result tb_world_step(tb_world* w, float dt)
+{
+    return tb_world_step_n(w, dt, 1);
+}
+
+tb_result tb_world_device_info(const tb_world* w, tb_device_info* out)
+{
+    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    snprintf(out->name, sizeof out->name, "%s", w->gpu.props.deviceName);
+    snprintf(out->driver, sizeof out->driver, "%s", w->gpu.driver);
+    out->vendor_id = w->gpu.props.vendorID;
+    out->device_id = w->gpu.props.deviceID;
+    out->api_version = w->gpu.props.apiVersion;
+    out->subgroup_size = w->gpu.subgroup_size;
+    out->is_cpu = w->gpu.is_cpu;
+    return TB_OK;
+}
+
+tb_result tb_world_get_stats(const tb_world* w, tb_world_stats* out)
+{
+    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    memset(out, 0, sizeof *out);
+    out->body_count = w->body_slots.live;
+    out->body_capacity = w->store.capacity;
+    out->shape_count = w->shape_slots.live;
+    out->steps = w->steps;
+    out->submits = w->submits;
+    out->records = w->graph.records;
+    out->buffer_growths = w->store.growths;
+    out->validation_messages = w->diag.validation_messages;
+    out->gpu_ms = w->gpu_ms;
+    out->stage_count = w->graph.count;
+    for (uint32_t i = 0; i < w->graph.count; i++) {
+        out->stages[i].name = w->graph.stages[i].name;
+        out->stages[i].ms = w->stage_ms[i];
+    }
+    return TB_OK;
+}

@@ -1,0 +1,99 @@
+/* The world as the API layer sees it: ids, host-side records and the GPU objects. */
+#ifndef TB_WORLD_H
+#define TB_WORLD_H
+
+#include "api/diag.h"
+#include "gpu/bodies.h"
+#include "gpu/graph.h"
+#include "gpu/memory.h"
+#include "gpu/pipeline.h"
+#include "gpu/transfer.h"
+#include "layout.h"
+#include "tumble.h"
+
+#define TB_DEF_COOKIE 0x54554d42 /* "TUMB" */
+
+/// Host-side record of a body; what the GPU needs lives in the body store.
+typedef struct tb_body_record {
+    uint16_t generation;
+    uint8_t alive;
+    uint8_t type;           ///< tb_body_type
+    uint32_t shape;         ///< shape slot
+    float mass;             ///< kg, 0 for static
+    tb_vec3 inertia;        ///< principal moments, kg m^2
+    void* user_data;
+} tb_body_record;
+
+typedef struct tb_shape_record {
+    uint16_t generation;
+    uint8_t alive;
+    tb_shape_type type;
+    tb_shape_def material;
+    float volume;           ///< m^3; 0 for planes
+    tb_vec3 unit_inertia;   ///< principal moments of inertia per kg of mass
+    uint32_t users;         ///< live bodies using the shape
+} tb_shape_record;
+
+/// Generic slot table bookkeeping: free slots are reused last-in first-out.
+typedef struct tb_slots {
+    uint32_t used;          ///< slots handed out at least once (high-water)
+    uint32_t live;
+    uint32_t* free;
+    uint32_t free_count, capacity;
+} tb_slots;
+
+struct tb_world {
+    uint16_t serial;
+    tb_diag diag;
+    tb_gpu gpu;
+    tb_memory memory;
+    tb_pipelines pipelines;
+    tb_graph graph;
+    tb_transfer transfer;
+    tb_body_store store;
+    tb_buffer params_buffer;
+    tb_gpu_params params;
+
+    tb_vec3 gravity;
+    float max_rotation_per_step;
+    uint32_t max_bodies, max_shapes;
+
+    tb_slots body_slots;
+    tb_body_record* bodies;
+    uint32_t body_record_capacity; ///< records allocated on the host
+
+    tb_slots shape_slots;
+    tb_shape_record* shapes;
+    uint32_t shape_table_capacity; ///< records allocated on the host
+    tb_gpu_shape* gpu_shapes;    ///< host copy of the shape table
+    tb_buffer shape_buffer;
+    uint32_t shape_buffer_capacity;
+    int shapes_dirty;
+
+    uint64_t steps, submits;
+    double stage_ms[TB_MAX_STAGES];
+    double gpu_ms;
+};
+
+/* slots.c */
+tb_result tb_slots_take(tb_slots* slots, uint32_t* out);
+void tb_slots_give(tb_slots* slots, uint32_t slot);
+void tb_slots_free(tb_slots* slots);
+
+/* world.c */
+/// Bring the arrays in `mask` of the body mirror up to date (uploading first what is dirty).
+tb_result tb_world_fetch(tb_world* w, uint32_t mask);
+/// Make room for `slots` body slots on the GPU.
+tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots);
+
+/* checks.c */
+int tb_finite3(tb_vec3 v);
+int tb_finite_quat(tb_quat q);
+/// Check a rotation and return it normalised; fails beyond the 1e-3 tolerance.
+tb_result tb_check_rotation(tb_diag* diag, tb_quat q, tb_quat* out, const char* what);
+
+/* body.c / shape.c lookups: the record of a valid id, or an error and NULL. */
+tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r);
+tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
+
+#endif

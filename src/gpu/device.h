@@ -1,0 +1,45 @@
+/* The Vulkan instance, the chosen device and its compute queue. */
+#ifndef TB_DEVICE_H
+#define TB_DEVICE_H
+
+#include <vulkan/vulkan.h>
+#include "api/diag.h"
+
+typedef struct tb_gpu {
+    VkInstance instance;
+    VkDebugUtilsMessengerEXT messenger;
+    VkPhysicalDevice physical;
+    VkDevice device;
+    VkQueue queue;
+    uint32_t queue_family;
+    VkPhysicalDeviceProperties props;
+    VkPhysicalDeviceMemoryProperties memory_props;
+    char driver[2 * VK_MAX_DRIVER_NAME_SIZE + VK_MAX_DRIVER_INFO_SIZE];
+    uint32_t subgroup_size;
+    uint32_t timestamp_valid_bits;  ///< 0: the queue has no timestamps
+    int is_cpu;
+    VkCommandPool command_pool;     ///< resettable command buffers, compute queue
+    VkFence fence;                  ///< one submission in flight at a time
+    PFN_vkCmdBeginDebugUtilsLabelEXT begin_label; ///< NULL without debug utils
+    PFN_vkCmdEndDebugUtilsLabelEXT end_label;
+    tb_diag* diag;                  ///< where messages go (the world's)
+} tb_gpu;
+
+typedef struct tb_gpu_options {
+    const char* device;   ///< index or name substring; NULL: TUMBLE_DEVICE, then the best
+    int validation;       ///< enable the Khronos validation layer + synchronization checks
+} tb_gpu_options;
+
+tb_result tb_gpu_create(tb_gpu* gpu, const tb_gpu_options* options, tb_diag* diag);
+void tb_gpu_destroy(tb_gpu* gpu);
+
+/// Check a Vulkan result; on failure record an error naming `what`.
+tb_result tb_vk_check(tb_diag* diag, VkResult vr, const char* what);
+
+/// Submit command buffers in one vkQueueSubmit and wait for them.
+tb_result tb_gpu_submit_wait(tb_gpu* gpu, const VkCommandBuffer* cbs, uint32_t count);
+
+/// Allocate a primary command buffer from the gpu's pool.
+tb_result tb_gpu_command_buffer(tb_gpu* gpu, VkCommandBuffer* out);
+
+#endif

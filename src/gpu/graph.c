@@ -1,0 +1,181 @@
+/* Recording the step graph into one command buffer. */
+#include "gpu/graph.h"
+
+#include <string.h>
+
+#include "layout.h"
+
+tb_result tb_graph_init(tb_graph* graph, tb_gpu* gpu, tb_pipelines* pipelines)
+{
+    memset(graph, 0, sizeof *graph);
+    graph->gpu = gpu;
+    graph->pipelines = pipelines;
+    graph->needs_record = 1;
+    return tb_gpu_command_buffer(gpu, &graph->cb);
+}
+
+static void destroy_queries(tb_graph* graph)
+{
+    if (graph->queries) vkDestroyQueryPool(graph->gpu->device, graph->queries, NULL);
+    graph->queries = VK_NULL_HANDLE;
+}
+
+void tb_graph_destroy(tb_graph* graph)
+{
+    if (!graph->gpu) return;
+    for (uint32_t i = 0; i < graph->count; i++)
+        vkDestroyPipeline(graph->gpu->device, graph->stages[i].pipeline, NULL);
+    destroy_queries(graph);
+    if (graph->cb) vkFreeCommandBuffers(graph->gpu->device, graph->gpu->command_pool, 1, &graph->cb);
+    memset(graph, 0, sizeof *graph);
+}
+
+tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage)
+{
+    if (graph->count == TB_MAX_STAGES || at > graph->count) {
+        vkDestroyPipeline(graph->gpu->device, stage->pipeline, NULL);
+        return tb_fail(graph->gpu->diag, TB_ERROR_CAPACITY,
+                       "the step graph holds at most %d stages", TB_MAX_STAGES);
+    }
+    memmove(&graph->stages[at + 1], &graph->stages[at], (graph->count - at) * sizeof(tb_stage));
+    graph->stages[at] = *stage;
+    graph->count++;
+    tb_graph_invalidate(graph);
+    return TB_OK;
+}
+
+tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatch_rule rule)
+{
+    tb_stage stage = { .name = shader, .rule = rule };
+    tb_result r = tb_pipeline_create(graph->pipelines, shader, TB_WORKGROUP_SIZE, &stage.pipeline);
+    return r ? r : tb_graph_insert(graph, graph->count, &stage);
+}
+
+void tb_graph_invalidate(tb_graph* graph)
+{
+    graph->needs_record = 1;
+}
+
+static tb_result ensure_queries(tb_graph* graph)
+{
+    destroy_queries(graph);
+    if (!graph->gpu->timestamp_valid_bits) return TB_OK;
+    VkQueryPoolCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
+        .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = graph->count + 1,
+    };
+    return tb_vk_check(graph->gpu->diag,
+                       vkCreateQueryPool(graph->gpu->device, &info, NULL, &graph->queries),
+                       "vkCreateQueryPool");
+}
+
+static void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src, VkAccessFlags src_access,
+                           VkPipelineStageFlags dst, VkAccessFlags dst_access)
+{
+    VkMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = src_access, .dstAccessMask = dst_access,
+    };
+    vkCmdPipelineBarrier(cb, src, dst, 0, 1, &barrier, 0, NULL, 0, NULL);
+}
+
+/* What a stage may read or write: storage, uniforms, and indirect arguments. */
+#define STAGE_READS (VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | \
+                     VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT)
+#define STAGE_STAGES (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT)
+
+static void record_dispatch(const tb_graph* graph, VkCommandBuffer cb, const tb_stage* s,
+                            VkBuffer params)
+{
+    switch (s->rule) {
+    case TB_DISPATCH_PER_BODY:
+        vkCmdDispatchIndirect(cb, params, TB_PARAMS_BODY_DISPATCH_OFFSET);
+        break;
+    case TB_DISPATCH_FIXED:
+        vkCmdDispatch(cb, s->groups[0], s->groups[1], s->groups[2]);
+        break;
+    case TB_DISPATCH_INDIRECT:
+        vkCmdDispatchIndirect(cb, s->indirect, s->indirect_offset);
+        break;
+    }
+    (void)graph;
+}
+
+static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, VkBuffer params)
+{
+    const tb_stage* s = &graph->stages[i];
+    if (graph->gpu->begin_label) {
+        VkDebugUtilsLabelEXT label = { .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT,
+                                       .pLabelName = s->name };
+        graph->gpu->begin_label(cb, &label);
+    }
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, s->pipeline);
+    if (s->push_size)
+        vkCmdPushConstants(cb, graph->pipelines->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
+                           s->push_size, s->push);
+    record_dispatch(graph, cb, s, params);
+    if (graph->gpu->end_label) graph->gpu->end_label(cb);
+    if (graph->queries)
+        vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, graph->queries, i + 1);
+    if (i + 1 < graph->count)
+        memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                       STAGE_STAGES, STAGE_READS);
+}
+
+static tb_result record(tb_graph* graph, VkBuffer params)
+{
+    VkCommandBuffer cb = graph->cb;
+    tb_result r = tb_vk_check(graph->gpu->diag, vkResetCommandBuffer(cb, 0), "vkResetCommandBuffer");
+    if (r) return r;
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_SIMULTANEOUS_USE_BIT,
+    };
+    vkBeginCommandBuffer(cb, &begin);
+    /* Uploads of this submission, and the previous step's writes, come before anything. */
+    memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                   STAGE_STAGES, STAGE_READS);
+    if (graph->queries) {
+        vkCmdResetQueryPool(cb, graph->queries, 0, graph->count + 1);
+        vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, graph->queries, 0);
+    }
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, graph->pipelines->layout, 0, 1,
+                            &graph->pipelines->set, 0, NULL);
+    for (uint32_t i = 0; i < graph->count; i++) record_stage(graph, cb, i, params);
+    /* Results go to transfers (read-back, growth copies) and the host. */
+    memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                   VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT |
+                   VK_ACCESS_HOST_READ_BIT);
+    return tb_vk_check(graph->gpu->diag, vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+}
+
+tb_result tb_graph_prepare(tb_graph* graph, VkBuffer params)
+{
+    if (!graph->needs_record && params == graph->params) return TB_OK;
+    tb_result r = ensure_queries(graph);
+    if (!r) r = record(graph, params);
+    if (r) return r;
+    graph->params = params;
+    graph->needs_record = 0;
+    graph->records++;
+    return TB_OK;
+}
+
+void tb_graph_read_times(const tb_graph* graph, double* stage_ms, double* total_ms)
+{
+    uint64_t ticks[TB_MAX_STAGES + 1] = { 0 };
+    *total_ms = 0;
+    for (uint32_t i = 0; i < graph->count; i++) stage_ms[i] = 0;
+    if (!graph->queries || graph->records == 0) return;
+    if (vkGetQueryPoolResults(graph->gpu->device, graph->queries, 0, graph->count + 1,
+                              sizeof ticks, ticks, sizeof ticks[0], VK_QUERY_RESULT_64_BIT) != VK_SUCCESS)
+        return;
+    uint64_t mask = graph->gpu->timestamp_valid_bits >= 64
+                        ? ~0ull : ((1ull << graph->gpu->timestamp_valid_bits) - 1);
+    double ns_per_tick = graph->gpu->props.limits.timestampPeriod;
+    for (uint32_t i = 0; i < graph->count; i++)
+        stage_ms[i] = (double)((ticks[i + 1] - ticks[i]) & mask) * ns_per_tick * 1e-6;
+    *total_ms = (double)((ticks[graph->count] - ticks[0]) & mask) * ns_per_tick * 1e-6;
+}

@@ -1,0 +1,61 @@
+/* The step graph: an ordered list of compute stages recorded into ONE command buffer.
+ *
+ * Each stage is a pipeline, a dispatch rule and optional push constants. Between stages the
+ * recording puts one global memory barrier; around each a timestamp. The command buffer is
+ * recorded again only when the structure changes (a stage is inserted, a buffer grew and
+ * the descriptor set was rewritten): tb_graph_invalidate() marks that, and the next step
+ * records before it submits. A step of n substeps submits the same command buffer n times
+ * in one vkQueueSubmit, so it is recorded with SIMULTANEOUS_USE.
+ */
+#ifndef TB_GRAPH_H
+#define TB_GRAPH_H
+
+#include "gpu/pipeline.h"
+#include "tumble.h"
+
+typedef enum tb_dispatch_rule {
+    TB_DISPATCH_PER_BODY,  ///< one thread per body slot, sized by tb_gpu_params.body_dispatch
+    TB_DISPATCH_FIXED,     ///< `groups` workgroups
+    TB_DISPATCH_INDIRECT,  ///< VkDispatchIndirectCommand at indirect/indirect_offset
+} tb_dispatch_rule;
+
+typedef struct tb_stage {
+    const char* name;          ///< shader path, also the stats key
+    VkPipeline pipeline;       ///< owned by the graph once inserted
+    tb_dispatch_rule rule;
+    uint32_t groups[3];
+    VkBuffer indirect;
+    VkDeviceSize indirect_offset;
+    uint32_t push_size;
+    unsigned char push[TB_PUSH_CONSTANT_BYTES];
+} tb_stage;
+
+typedef struct tb_graph {
+    tb_gpu* gpu;
+    tb_pipelines* pipelines;
+    VkBuffer params;           ///< holds the per-body dispatch arguments
+    tb_stage stages[TB_MAX_STAGES];
+    uint32_t count;
+    VkCommandBuffer cb;
+    VkQueryPool queries;       ///< count + 1 timestamps; VK_NULL_HANDLE without timestamps
+    int needs_record;
+    uint64_t records;
+} tb_graph;
+
+tb_result tb_graph_init(tb_graph* graph, tb_gpu* gpu, tb_pipelines* pipelines);
+void tb_graph_destroy(tb_graph* graph);
+
+/// Insert a stage before position `at` (count appends). The graph takes its pipeline.
+tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage);
+/// Build the pipeline of an embedded shader and append it as a stage.
+tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatch_rule rule);
+
+/// The structure changed: record again before the next submission.
+void tb_graph_invalidate(tb_graph* graph);
+/// Record the command buffer if it needs it.
+tb_result tb_graph_prepare(tb_graph* graph, VkBuffer params);
+
+/// GPU milliseconds of each stage and of the whole of the last executed step.
+void tb_graph_read_times(const tb_graph* graph, double* stage_ms, double* total_ms);
+
+#endif

@@ -1,0 +1,205 @@
+/* Pipelines, the world's descriptor set and the pipeline cache. */
+#include "gpu/pipeline.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gpu/shaders.h"
+#include "layout.h"
+
+const tb_shader_blob* tb_shader_find(const char* name)
+{
+    for (uint32_t i = 0; i < tb_shader_blob_count; i++)
+        if (strcmp(tb_shader_blobs[i].name, name) == 0) return &tb_shader_blobs[i];
+    return NULL;
+}
+
+static VkDescriptorType binding_type(uint32_t binding)
+{
+    return binding == TB_BIND_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                                     : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+static tb_result create_layouts(tb_pipelines* p)
+{
+    VkDescriptorSetLayoutBinding bindings[TB_BIND_COUNT];
+    for (uint32_t b = 0; b < TB_BIND_COUNT; b++) {
+        bindings[b] = (VkDescriptorSetLayoutBinding){
+            .binding = b, .descriptorType = binding_type(b), .descriptorCount = 1,
+            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT,
+        };
+    }
+    VkDescriptorSetLayoutCreateInfo set_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = TB_BIND_COUNT, .pBindings = bindings,
+    };
+    tb_diag* diag = p->gpu->diag;
+    tb_result r = tb_vk_check(diag, vkCreateDescriptorSetLayout(p->gpu->device, &set_info, NULL,
+                                                               &p->set_layout),
+                              "vkCreateDescriptorSetLayout");
+    if (r) return r;
+    VkPushConstantRange push = { VK_SHADER_STAGE_COMPUTE_BIT, 0, TB_PUSH_CONSTANT_BYTES };
+    VkPipelineLayoutCreateInfo layout_info = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+        .setLayoutCount = 1, .pSetLayouts = &p->set_layout,
+        .pushConstantRangeCount = 1, .pPushConstantRanges = &push,
+    };
+    return tb_vk_check(diag, vkCreatePipelineLayout(p->gpu->device, &layout_info, NULL, &p->layout),
+                       "vkCreatePipelineLayout");
+}
+
+static tb_result create_set(tb_pipelines* p)
+{
+    VkDescriptorPoolSize sizes[] = {
+        { VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1 },
+        { VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, TB_BIND_COUNT - 1 },
+    };
+    VkDescriptorPoolCreateInfo pool_info = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+        .maxSets = 1, .poolSizeCount = 2, .pPoolSizes = sizes,
+    };
+    tb_diag* diag = p->gpu->diag;
+    tb_result r = tb_vk_check(diag, vkCreateDescriptorPool(p->gpu->device, &pool_info, NULL,
+                                                          &p->descriptor_pool),
+                              "vkCreateDescriptorPool");
+    if (r) return r;
+    VkDescriptorSetAllocateInfo alloc = {
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = p->descriptor_pool, .descriptorSetCount = 1, .pSetLayouts = &p->set_layout,
+    };
+    return tb_vk_check(diag, vkAllocateDescriptorSets(p->gpu->device, &alloc, &p->set),
+                       "vkAllocateDescriptorSets");
+}
+
+/* A cache file is only handed to the driver when its header names this very device:
+ * drivers are supposed to check, but a foreign blob is not worth the risk. */
+static int cache_header_matches(const tb_gpu* gpu, const unsigned char* data, size_t size)
+{
+    VkPipelineCacheHeaderVersionOne header;
+    if (size < sizeof header) return 0;
+    memcpy(&header, data, sizeof header);
+    return header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
+           header.vendorID == gpu->props.vendorID && header.deviceID == gpu->props.deviceID &&
+           memcmp(header.pipelineCacheUUID, gpu->props.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+}
+
+static unsigned char* read_cache_file(const tb_gpu* gpu, const char* path, size_t* size)
+{
+    FILE* f = path ? fopen(path, "rb") : NULL;
+    if (!f) return NULL;
+    unsigned char* data = NULL;
+    if (fseek(f, 0, SEEK_END) == 0) {
+        long n = ftell(f);
+        rewind(f);
+        data = n > 0 ? malloc((size_t)n) : NULL;
+        if (data && fread(data, 1, (size_t)n, f) == (size_t)n && cache_header_matches(gpu, data, (size_t)n)) {
+            *size = (size_t)n;
+        } else {
+            free(data);
+            data = NULL;
+        }
+    }
+    fclose(f);
+    return data;
+}
+
+static tb_result create_cache(tb_pipelines* p)
+{
+    size_t size = 0;
+    unsigned char* data = read_cache_file(p->gpu, p->cache_path, &size);
+    VkPipelineCacheCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO,
+        .initialDataSize = size, .pInitialData = data,
+    };
+    tb_result r = tb_vk_check(p->gpu->diag, vkCreatePipelineCache(p->gpu->device, &info, NULL, &p->cache),
+                              "vkCreatePipelineCache");
+    free(data);
+    return r;
+}
+
+static void save_cache(tb_pipelines* p)
+{
+    size_t size = 0;
+    if (!p->cache_path || vkGetPipelineCacheData(p->gpu->device, p->cache, &size, NULL) != VK_SUCCESS)
+        return;
+    unsigned char* data = malloc(size ? size : 1);
+    FILE* f = NULL;
+    if (data && vkGetPipelineCacheData(p->gpu->device, p->cache, &size, data) == VK_SUCCESS)
+        f = fopen(p->cache_path, "wb");
+    if (f) {
+        if (fwrite(data, 1, size, f) != size)
+            tb_log(p->gpu->diag, TB_LOG_WARNING, "could not write pipeline cache %s", p->cache_path);
+        fclose(f);
+    }
+    free(data);
+}
+
+tb_result tb_pipelines_init(tb_pipelines* p, tb_gpu* gpu, const char* cache_path)
+{
+    memset(p, 0, sizeof *p);
+    p->gpu = gpu;
+    p->cache_path = cache_path;
+    tb_result r = create_layouts(p);
+    if (!r) r = create_set(p);
+    if (!r) r = create_cache(p);
+    return r;
+}
+
+void tb_pipelines_destroy(tb_pipelines* p)
+{
+    VkDevice device = p->gpu ? p->gpu->device : VK_NULL_HANDLE;
+    if (!device) return;
+    if (p->cache) save_cache(p);
+    vkDestroyPipelineCache(device, p->cache, NULL);
+    vkDestroyDescriptorPool(device, p->descriptor_pool, NULL);
+    vkDestroyPipelineLayout(device, p->layout, NULL);
+    vkDestroyDescriptorSetLayout(device, p->set_layout, NULL);
+    memset(p, 0, sizeof *p);
+}
+
+tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
+                             VkPipeline* out)
+{
+    tb_diag* diag = p->gpu->diag;
+    const tb_shader_blob* blob = tb_shader_find(shader);
+    if (!blob) return tb_fail(diag, TB_ERROR_DEVICE, "no embedded shader named %s", shader);
+    VkShaderModuleCreateInfo module_info = {
+        .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+        .codeSize = blob->size, .pCode = blob->code,
+    };
+    VkShaderModule module;
+    tb_result r = tb_vk_check(diag, vkCreateShaderModule(p->gpu->device, &module_info, NULL, &module),
+                              "vkCreateShaderModule");
+    if (r) return r;
+    uint32_t values[2] = { workgroup_size, p->gpu->subgroup_size };
+    VkSpecializationMapEntry entries[2] = {
+        { TB_SPEC_WORKGROUP_SIZE, 0, sizeof(uint32_t) },
+        { TB_SPEC_SUBGROUP_SIZE, sizeof(uint32_t), sizeof(uint32_t) },
+    };
+    VkSpecializationInfo spec = { 2, entries, sizeof values, values };
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = {
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+            .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main",
+            .pSpecializationInfo = &spec,
+        },
+        .layout = p->layout,
+    };
+    r = tb_vk_check(diag, vkCreateComputePipelines(p->gpu->device, p->cache, 1, &info, NULL, out),
+                    shader);
+    vkDestroyShaderModule(p->gpu->device, module, NULL);
+    return r;
+}
+
+void tb_pipelines_bind(tb_pipelines* p, uint32_t binding, VkBuffer buffer)
+{
+    VkDescriptorBufferInfo info = { buffer, 0, VK_WHOLE_SIZE };
+    VkWriteDescriptorSet write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+        .dstSet = p->set, .dstBinding = binding, .descriptorCount = 1,
+        .descriptorType = binding_type(binding), .pBufferInfo = &info,
+    };
+    vkUpdateDescriptorSets(p->gpu->device, 1, &write, 0, NULL);
+}
