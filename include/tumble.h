@@ -5,7 +5,9 @@
  * Conventions
  * - Units are SI: metres, kilograms, seconds, radians. Gravity defaults to (0, -9.81, 0).
  * - Every fallible call returns tb_result; on failure the world is unchanged and
- *   tb_world_last_error() holds a sentence that says what was wrong.
+ *   tb_world_last_error() holds a sentence that says what was wrong (the message is also
+ *   passed to the log callback at TB_LOG_INFO). NULL pointers where an object is required
+ *   are rejected with TB_ERROR_INVALID_ARGUMENT; output pointers of getters may be NULL.
  * - Ids are small values (index + generation). A destroyed body's id becomes stale and is
  *   rejected with TB_ERROR_STALE_ID, never dereferenced. The zero id is null.
  * - Definitions are initialised with their tb_default_*_def() function and then edited.
@@ -130,7 +132,8 @@ TB_API tb_vec3 tb_world_get_gravity(const tb_world* world);
 /// the GPU has finished the step. dt must be finite and > 0.
 TB_API tb_result tb_world_step(tb_world* world, float dt);
 
-/// Advance n steps of dt in one queue submission. Equal to n calls of tb_world_step.
+/// Advance n steps of dt in one queue submission. Equal to n calls of tb_world_step;
+/// n = 0 does nothing and returns TB_OK.
 TB_API tb_result tb_world_step_n(tb_world* world, float dt, uint32_t n);
 
 typedef struct tb_device_info {
@@ -284,13 +287,14 @@ TB_API tb_result tb_body_get_type(const tb_world* world, tb_body_id body, tb_bod
 TB_API void* tb_body_get_user_data(const tb_world* world, tb_body_id body);
 
 /// Read the poses of `count` bodies into caller arrays (either may be NULL). One GPU
-/// read-back serves any number of reads until the next step or write.
+/// read-back serves any number of reads until the next step.
 TB_API tb_result tb_world_read_transforms(tb_world* world, const tb_body_id* ids,
                                           uint32_t count, tb_vec3* positions,
                                           tb_quat* rotations);
 
 /// World-space AABBs of `count` bodies as computed by the last step (zero before the
-/// first step that saw the body). Either array may be NULL.
+/// first step that saw the body). Either array may be NULL. Boxes and spheres get their
+/// tight box; planes an unbounded one (half extent 1e18 on every axis).
 TB_API tb_result tb_world_read_aabbs(tb_world* world, const tb_body_id* ids, uint32_t count,
                                      tb_vec3* mins, tb_vec3* maxs);
 

@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // World AABB of every body from its shape's local AABB: the centre is carried by the pose,
 // the half extents by |R| (the sum of |column k| * h_k), which bounds the rotated box
-// exactly. Dead slots get an empty (inverted) box so nothing can overlap them.
+// exactly. A sphere's box does not turn with it: its half extent stays the radius.
+// Dead slots get an empty (inverted) box so nothing can overlap them.
 #include "world.glsl"
 #include "quat.glsl"
 
@@ -19,7 +20,9 @@ void main()
     mat3 r = quat_to_mat3(body_rot[i]);
     vec3 h = shape.aabb_half.xyz;
     vec3 centre = body_pos[i].xyz + r * shape.aabb_center.xyz;
-    vec3 extent = abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
+    vec3 extent = shape.info.x == TB_GPU_SHAPE_SPHERE
+                      ? vec3(shape.params.x)
+                      : abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
     body_aabb_min[i] = vec4(centre - extent, 0.0);
     body_aabb_max[i] = vec4(centre + extent, 0.0);
 }

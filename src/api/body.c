@@ -9,6 +9,10 @@
 
 tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r)
 {
+    if (!w) {
+        *r = TB_ERROR_INVALID_ARGUMENT;
+        return NULL;
+    }
     if (id.index1 == 0 || id.world != w->serial || id.index1 > w->body_slots.used) {
         *r = tb_fail(&w->diag, TB_ERROR_INVALID_ID, "body id {%u, %u, %u} does not name a body "
                      "of this world", id.index1, id.world, id.generation);

@@ -9,6 +9,10 @@
 
 tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r)
 {
+    if (!w) {
+        *r = TB_ERROR_INVALID_ARGUMENT;
+        return NULL;
+    }
     if (id.index1 == 0 || id.world != w->serial || id.index1 > w->shape_slots.used) {
         *r = tb_fail(&w->diag, TB_ERROR_INVALID_ID, "shape id {%u, %u, %u} does not name a shape "
                      "of this world", id.index1, id.world, id.generation);
@@ -25,8 +29,10 @@ tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb
     return s;
 }
 
-static tb_result check_material(tb_world* w, const tb_shape_def* def)
+static tb_result check_material(tb_world* w, const tb_shape_def* def, tb_shape_id* out)
 {
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
     if (!def || def->internal_cookie != TB_DEF_COOKIE)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT,
                        "shape def was not initialised with tb_default_shape_def()");
@@ -93,7 +99,7 @@ static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
 tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float radius,
                                  tb_shape_id* out)
 {
-    tb_result r = check_material(w, def);
+    tb_result r = check_material(w, def, out);
     if (r) return r;
     if (!isfinite(radius) || radius <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "sphere radius must be finite and > 0, "
@@ -109,7 +115,7 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
 
 tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, tb_shape_id* out)
 {
-    tb_result r = check_material(w, def);
+    tb_result r = check_material(w, def, out);
     if (r) return r;
     if (!tb_finite3(h) || h.x <= 0 || h.y <= 0 || h.z <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box half extents must be finite and "
@@ -126,7 +132,7 @@ tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, t
 tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
                                 tb_shape_id* out)
 {
-    tb_result r = check_material(w, def);
+    tb_result r = check_material(w, def, out);
     if (r) return r;
     double len = sqrt((double)n.x * n.x + (double)n.y * n.y + (double)n.z * n.z);
     if (!tb_finite3(n) || !isfinite(offset) || !(len > 1e-12) || !isfinite(len))

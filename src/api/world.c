@@ -250,7 +250,7 @@ tb_result tb_world_device_info(const tb_world* w, tb_device_info* out)
     if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     snprintf(out->name, sizeof out->name, "%s", w->gpu.props.deviceName);
-    snprintf(out->driver, sizeof out->driver, "%s", w->gpu.driver);
+    snprintf(out->driver, sizeof out->driver, "%.*s", (int)sizeof out->driver - 1, w->gpu.driver);
     out->vendor_id = w->gpu.props.vendorID;
     out->device_id = w->gpu.props.deviceID;
     out->api_version = w->gpu.props.apiVersion;

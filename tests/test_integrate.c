@@ -1,0 +1,439 @@
+/* Integration on the GPU (lavapipe): gravity, damping, semi-implicit Euler, the orientation
+ * update and its clamp, static bodies, impulses, gravity scale. References are computed in
+ * double with the same recurrence the engine documents, so the tolerances only have to
+ * absorb float rounding, not a different scheme. */
+#include "harness.h"
+
+#include <math.h>
+#include <string.h>
+
+#define DT (1.0f / 60.0f)
+#define PI 3.14159265358979323846
+
+/* One body's reference state, advanced in double by the documented recurrence:
+ * v = (v + g*scale*dt) / (1 + dt*c); x += v*dt   (semi-implicit Euler, damping after gravity). */
+typedef struct ref_body {
+    double x[3], v[3];
+} ref_body;
+
+static ref_body ref_make(tb_vec3 x, tb_vec3 v)
+{
+    ref_body r = { { x.x, x.y, x.z }, { v.x, v.y, v.z } };
+    return r;
+}
+
+static void ref_step(ref_body* r, tb_vec3 g, double scale, double damping, int steps)
+{
+    const double dt = DT, gv[3] = { g.x, g.y, g.z };
+    for (int k = 0; k < steps; k++)
+        for (int i = 0; i < 3; i++) {
+            r->v[i] = (r->v[i] + gv[i] * scale * dt) / (1.0 + dt * damping);
+            r->x[i] += r->v[i] * dt;
+        }
+}
+
+static void assert_matches_ref(tb_world* w, tb_body_id id, const ref_body* r, double x_tol,
+                               double v_rel)
+{
+    tb_vec3 p, v, av;
+    th_read_pose(w, id, &p, NULL);
+    th_assert_ok(tb_body_get_velocity(w, id, &v, &av));
+    th_assert_near(p.x, r->x[0], x_tol, 0);
+    th_assert_near(p.y, r->x[1], x_tol, 0);
+    th_assert_near(p.z, r->x[2], x_tol, 0);
+    th_assert_near(v.x, r->v[0], 1e-5, v_rel);
+    th_assert_near(v.y, r->v[1], 1e-5, v_rel);
+    th_assert_near(v.z, r->v[2], 1e-5, v_rel);
+}
+
+/* (a) Free fall of spheres and boxes with initial velocity. After one step the position
+ * must include g*dt^2 (semi-implicit: velocity first), which explicit Euler would miss by
+ * 2.7 mm; after 120 steps the closed form x0 + v0 k dt + g dt^2 k(k+1)/2. */
+static void test_free_fall(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    const tb_vec3 g = tb_world_get_gravity(w);
+    th_assert_near(g.y, -9.81, 1e-6, 0); /* the documented default */
+    tb_shape_id sphere = th_sphere(w, 0.5f), box = th_box(w, th_v3(0.5f, 0.25f, 1.0f));
+    th_rng rng = th_rng_seed(7);
+    enum { N = 6 };
+    tb_body_id ids[N];
+    ref_body ref[N];
+    tb_quat q0[N];
+    tb_vec3 v0[N];
+    for (int i = 0; i < N; i++) {
+        tb_body_def d = th_dynamic_def(i % 2 ? box : sphere,
+                                       th_v3(3.0f * i, 10.0f, -2.0f * i));
+        d.linear_velocity = th_v3(th_rng_range(&rng, -3, 3), th_rng_range(&rng, 0, 8),
+                                  th_rng_range(&rng, -3, 3));
+        d.rotation = th_rng_quat(&rng);
+        ids[i] = th_body(w, &d);
+        ref[i] = ref_make(d.position, d.linear_velocity);
+        v0[i] = d.linear_velocity;
+    }
+    th_assert_ok(tb_world_read_transforms(w, ids, N, NULL, q0));
+
+    th_assert_ok(tb_world_step(w, DT));
+    for (int i = 0; i < N; i++) {
+        ref_step(&ref[i], g, 1, 0, 1);
+        assert_matches_ref(w, ids[i], &ref[i], 1e-5, 1e-5);
+    }
+    /* 119 more steps, mixing step and step_n: both are documented as the same thing. */
+    th_assert_ok(tb_world_step_n(w, DT, 59));
+    for (int k = 0; k < 60; k++) th_assert_ok(tb_world_step(w, DT));
+    const int k = 120;
+    for (int i = 0; i < N; i++) {
+        ref_step(&ref[i], g, 1, 0, k - 1);
+        assert_matches_ref(w, ids[i], &ref[i], 1e-3, 1e-4);
+        tb_quat q;
+        th_read_pose(w, ids[i], NULL, &q);
+        /* no angular velocity: the orientation must not drift */
+        th_assert_near(q.x, q0[i].x, 1e-6, 0);
+        th_assert_near(q.y, q0[i].y, 1e-6, 0);
+        th_assert_near(q.z, q0[i].z, 1e-6, 0);
+        th_assert_near(q.w, q0[i].w, 1e-6, 0);
+    }
+    /* The closed form itself, independent of ref_step:
+     * x_k = x0 + v0 k dt + g dt^2 k(k+1)/2, v_k = v0 + g k dt. */
+    for (int i = 0; i < N; i++) {
+        tb_vec3 p, v, av;
+        th_read_pose(w, ids[i], &p, NULL);
+        th_assert_ok(tb_body_get_velocity(w, ids[i], &v, &av));
+        const double dt = DT, c = dt * dt * k * (k + 1) / 2.0;
+        th_assert_near(p.x, 3.0 * i + v0[i].x * k * dt + g.x * c, 1e-3, 0);
+        th_assert_near(p.y, 10.0 + v0[i].y * k * dt + g.y * c, 1e-3, 0);
+        th_assert_near(p.z, -2.0 * i + v0[i].z * k * dt + g.z * c, 1e-3, 0);
+        th_assert_near(v.y, v0[i].y + g.y * k * dt, 1e-5, 1e-4);
+    }
+    tb_world_stats st = th_stats(w);
+    assert_int_equal(st.steps, 120);
+    th_world_destroy(w);
+}
+
+/* Local axis `axis` of a body with rotation q, in world coordinates. */
+static void body_axis(tb_quat q, int axis, double out[3])
+{
+    double e[3] = { 0, 0, 0 };
+    e[axis] = 1;
+    th_quat_rotate(q, e, out);
+}
+
+/* (b) Spin about a principal axis (the largest-inertia axis of a box with three different
+ * half extents, a stable axis): no torque, so the angular velocity stays, the quaternion
+ * stays unit, and the body turns by omega*t about the fixed world axis. */
+static void test_principal_spin(void** state)
+{
+    (void)state;
+    tb_world_def wd = tb_default_world_def();
+    wd.gravity = th_v3(0, 0, 0);
+    tb_world* w = th_world_create(&wd);
+    /* inertia ~ (hy^2+hz^2, hx^2+hz^2, hx^2+hy^2) = (5, 4.25, 1.25): x is the largest */
+    tb_shape_id box = th_box(w, th_v3(0.5f, 1.0f, 2.0f));
+    const double omega = 2.0;
+    th_rng rng = th_rng_seed(3);
+    tb_body_def d = th_dynamic_def(box, th_v3(1, 2, 3));
+    d.rotation = th_rng_quat(&rng);
+    double ax[3];
+    body_axis(d.rotation, 0, ax); /* local x in world frame */
+    d.angular_velocity = th_v3((float)(omega * ax[0]), (float)(omega * ax[1]),
+                               (float)(omega * ax[2]));
+    tb_body_id id = th_body(w, &d);
+    tb_vec3 w0 = d.angular_velocity;
+    double y0[3];
+    body_axis(d.rotation, 1, y0);
+
+    for (int chunk = 1; chunk <= 4; chunk++) {
+        th_assert_ok(tb_world_step_n(w, DT, 250));
+        tb_vec3 p, lv, av;
+        tb_quat q;
+        th_read_pose(w, id, &p, &q);
+        th_assert_ok(tb_body_get_velocity(w, id, &lv, &av));
+        th_assert_near(th_quat_length(q), 1.0, 1e-5, 0);
+        th_assert_vec3_near(av, w0, 1e-5 * omega, 0); /* 1e-5 of |omega| */
+        th_assert_vec3_near(p, d.position, 0, 0); /* no linear motion at all */
+        /* analytic: local y rotated about the fixed spin axis by omega*t */
+        double t = 250.0 * chunk * (double)DT, y_want[3], y_got[3];
+        th_quat_rotate(th_quat_axis_angle(w0, omega * t), y0, y_want);
+        body_axis(q, 1, y_got);
+        for (int i = 0; i < 3; i++) th_assert_near(y_got[i], y_want[i], 1e-3, 0);
+        /* the spin axis itself is carried along unchanged */
+        double x_got[3];
+        body_axis(q, 0, x_got);
+        for (int i = 0; i < 3; i++) th_assert_near(x_got[i], ax[i], 1e-4, 0);
+    }
+    th_world_destroy(w);
+}
+
+/* Rotation between two unit quaternions' frames, measured on the body axes: angle of q. */
+static void assert_rotation(tb_quat q, double angle, tb_vec3 axis)
+{
+    th_assert_near(th_quat_length(q), 1.0, 1e-5, 0);
+    th_assert_near(th_quat_angle(q), angle, 1e-5, 0);
+    /* vector part parallel to +axis (sign: q and -q are the same rotation) */
+    double s = q.w < 0 ? -1 : 1, half = sin(angle / 2);
+    th_assert_near(s * q.x, axis.x * half, 1e-5, 0);
+    th_assert_near(s * q.y, axis.y * half, 1e-5, 0);
+    th_assert_near(s * q.z, axis.z * half, 1e-5, 0);
+}
+
+/* (c) A spin faster than max_rotation_per_step (default pi/4) turns the body by exactly the
+ * limit per step; the stored angular velocity is kept. A slow body beside it is not
+ * clamped. A world with a custom limit uses that limit. */
+static void test_spin_clamp(void** state)
+{
+    (void)state;
+    tb_world_def wd = tb_default_world_def();
+    wd.gravity = th_v3(0, 0, 0);
+    th_assert_near(wd.max_rotation_per_step, PI / 4, 1e-6, 0);
+    tb_world* w = th_world_create(&wd);
+    tb_shape_id s = th_sphere(w, 0.5f);
+    tb_body_def d = th_dynamic_def(s, th_v3(0, 0, 0));
+    d.angular_velocity = th_v3(0, 0, 100); /* 100/60 = 1.67 rad per step > pi/4 */
+    tb_body_id fast = th_body(w, &d);
+    d.position = th_v3(5, 0, 0);
+    d.angular_velocity = th_v3(0, 1, 0); /* 0.0167 rad per step: unclamped */
+    tb_body_id slow = th_body(w, &d);
+
+    th_assert_ok(tb_world_step(w, DT));
+    tb_quat q;
+    th_read_pose(w, fast, NULL, &q);
+    assert_rotation(q, PI / 4, th_v3(0, 0, 1));
+    th_read_pose(w, slow, NULL, &q);
+    assert_rotation(q, 1.0 * DT, th_v3(0, 1, 0));
+
+    th_assert_ok(tb_world_step_n(w, DT, 2));
+    th_read_pose(w, fast, NULL, &q);
+    assert_rotation(q, 3 * PI / 4, th_v3(0, 0, 1));
+    tb_vec3 lv, av;
+    th_assert_ok(tb_body_get_velocity(w, fast, &lv, &av));
+    th_assert_vec3_near(av, th_v3(0, 0, 100), 0, 1e-6);
+    th_world_destroy(w);
+
+    wd.max_rotation_per_step = 0.1f;
+    w = th_world_create(&wd);
+    s = th_sphere(w, 0.5f);
+    d = th_dynamic_def(s, th_v3(0, 0, 0));
+    d.angular_velocity = th_v3(-30, 0, 0); /* 0.5 rad per step > 0.1 */
+    fast = th_body(w, &d);
+    th_assert_ok(tb_world_step(w, DT));
+    th_read_pose(w, fast, NULL, &q);
+    assert_rotation(q, 0.1, th_v3(-1, 0, 0));
+    th_world_destroy(w);
+}
+
+/* (d) Static bodies never move, whatever velocity they were given and with gravity on. */
+static void test_static_never_moves(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    th_rng rng = th_rng_seed(11);
+    tb_shape_id s = th_sphere(w, 1.0f), b = th_box(w, th_v3(1, 2, 3));
+    enum { N = 4 };
+    tb_body_id ids[N];
+    for (int i = 0; i < N; i++) {
+        tb_body_def d = th_static_def(i % 2 ? b : s, th_v3(1.0f + i, 2, 3));
+        d.rotation = th_rng_quat(&rng);
+        d.linear_velocity = th_v3(5, -1, 2);
+        d.angular_velocity = th_v3(0, 3, 1);
+        ids[i] = th_body(w, &d);
+    }
+    tb_vec3 p0[N], p1[N];
+    tb_quat q0[N], q1[N];
+    th_assert_ok(tb_world_read_transforms(w, ids, N, p0, q0));
+    th_assert_ok(tb_world_step_n(w, DT, 30));
+    th_assert_ok(tb_body_apply_impulse(w, ids[0], th_v3(100, 100, 100), th_v3(1, 3, 3)));
+    th_assert_ok(tb_world_step(w, DT));
+    th_assert_ok(tb_world_read_transforms(w, ids, N, p1, q1));
+    /* bit for bit: nothing may even be re-normalised */
+    assert_memory_equal(p0, p1, sizeof p0);
+    assert_memory_equal(q0, q1, sizeof q0);
+    float m = -1;
+    tb_vec3 inertia;
+    th_assert_ok(tb_body_get_mass(w, ids[0], &m, &inertia));
+    assert_true(m == 0.0f); /* "0 for static" */
+    tb_body_type t;
+    th_assert_ok(tb_body_get_type(w, ids[1], &t));
+    assert_int_equal(t, TB_BODY_STATIC);
+    th_world_destroy(w);
+}
+
+/* (e) Damping: v = (v + g dt) / (1 + dt c) each step, gravity first; the same for angular
+ * velocity with its own rate (a sphere, so no gyroscopic coupling). */
+static void test_damping(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    const tb_vec3 g = tb_world_get_gravity(w);
+    tb_shape_id s = th_sphere(w, 0.5f);
+    tb_body_def d = th_dynamic_def(s, th_v3(0, 50, 0));
+    d.linear_velocity = th_v3(3, 1, -2);
+    d.angular_velocity = th_v3(0, 0, 4);
+    d.linear_damping = 2.0f;
+    d.angular_damping = 3.0f;
+    tb_body_id id = th_body(w, &d);
+    ref_body ref = ref_make(d.position, d.linear_velocity);
+
+    /* One step: damping-after-gravity differs from damping-before by 5 mm/s in y. */
+    th_assert_ok(tb_world_step(w, DT));
+    ref_step(&ref, g, 1, 2.0, 1);
+    assert_matches_ref(w, id, &ref, 1e-5, 1e-5);
+    tb_vec3 lv, av;
+    th_assert_ok(tb_body_get_velocity(w, id, &lv, &av));
+    th_assert_near(av.z, 4.0 / (1.0 + DT * 3.0), 0, 1e-5);
+
+    th_assert_ok(tb_world_step_n(w, DT, 59));
+    ref_step(&ref, g, 1, 2.0, 59);
+    assert_matches_ref(w, id, &ref, 1e-3, 1e-4);
+    th_assert_ok(tb_body_get_velocity(w, id, &lv, &av));
+    th_assert_near(av.z, 4.0 / pow(1.0 + DT * 3.0, 60), 0, 1e-4);
+    th_assert_near(av.x, 0, 1e-7, 0);
+    th_assert_near(av.y, 0, 1e-7, 0);
+    th_world_destroy(w);
+}
+
+static tb_vec3 cross3(tb_vec3 a, tb_vec3 b)
+{
+    return th_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+static tb_vec3 sub3(tb_vec3 a, tb_vec3 b) { return th_v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+
+/* (f) An impulse J at world point p changes v by J/m and omega by I^-1 (r x J), r = p - x.
+ * Identity rotation, so the world inertia is the principal one. Checked on a sphere with
+ * the inertia from its shape and on a box with explicit, different moments. */
+static void test_apply_impulse(void** state)
+{
+    (void)state;
+    tb_world_def wd = tb_default_world_def();
+    wd.gravity = th_v3(0, 0, 0);
+    tb_world* w = th_world_create(&wd);
+    tb_shape_id s = th_sphere(w, 0.5f), b = th_box(w, th_v3(1, 1, 1));
+    tb_body_def d = th_dynamic_def(s, th_v3(1, 2, 3));
+    d.mass = 2.0f; /* inertia from the shape: 2/5 m r^2 = 0.2 */
+    d.linear_velocity = th_v3(0.5f, 0, 0);
+    tb_body_id sph = th_body(w, &d);
+    d = th_dynamic_def(b, th_v3(-4, 0, 1));
+    d.mass = 3.0f;
+    d.inertia = th_v3(1, 2, 4);
+    tb_body_id box = th_body(w, &d);
+
+    float m;
+    tb_vec3 inertia;
+    th_assert_ok(tb_body_get_mass(w, sph, &m, &inertia));
+    th_assert_near(m, 2.0, 0, 1e-6);
+    th_assert_vec3_near(inertia, th_v3(0.2f, 0.2f, 0.2f), 0, 1e-5);
+
+    /* Step once first so the bodies live on the GPU: the impulse must reach them there. */
+    th_assert_ok(tb_world_step(w, DT));
+    const tb_vec3 J = th_v3(1, 2, -0.5f);
+    tb_vec3 x, v, av;
+    th_read_pose(w, sph, &x, NULL);
+    tb_vec3 p = th_v3(x.x + 0.3f, x.y - 0.2f, x.z + 0.4f);
+    th_assert_ok(tb_body_apply_impulse(w, sph, J, p));
+    th_assert_ok(tb_body_get_velocity(w, sph, &v, &av));
+    th_assert_vec3_near(v, th_v3(0.5f + J.x / 2, J.y / 2, J.z / 2), 1e-6, 1e-5);
+    tb_vec3 L = cross3(sub3(p, x), J);
+    th_assert_vec3_near(av, th_v3(L.x / 0.2f, L.y / 0.2f, L.z / 0.2f), 1e-5, 1e-4);
+
+    th_read_pose(w, box, &x, NULL);
+    p = th_v3(x.x + 0.5f, x.y + 0.7f, x.z - 0.9f);
+    th_assert_ok(tb_body_apply_impulse(w, box, J, p));
+    th_assert_ok(tb_body_get_velocity(w, box, &v, &av));
+    th_assert_vec3_near(v, th_v3(J.x / 3, J.y / 3, J.z / 3), 1e-6, 1e-5);
+    L = cross3(sub3(p, x), J);
+    th_assert_vec3_near(av, th_v3(L.x / 1, L.y / 2, L.z / 4), 1e-5, 1e-4);
+
+    /* The next step moves the sphere with the new velocity. */
+    tb_vec3 x1;
+    th_read_pose(w, sph, &x, NULL);
+    th_assert_ok(tb_world_step(w, DT));
+    th_read_pose(w, sph, &x1, NULL);
+    th_assert_vec3_near(x1, th_v3(x.x + (0.5f + J.x / 2) * DT, x.y + J.y / 2 * DT,
+                                  x.z + J.z / 2 * DT), 1e-6, 1e-6);
+    th_world_destroy(w);
+}
+
+/* Mass and inertia from shape and density (default 1000 kg/m^3), and inertia scaled to a
+ * given mass. */
+static void test_mass_from_shape(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_shape_id s = th_sphere(w, 0.5f), b = th_box(w, th_v3(0.5f, 1, 2));
+    tb_body_def d = th_dynamic_def(s, th_v3(0, 0, 0));
+    tb_body_id sph = th_body(w, &d);
+    d.shape = b;
+    tb_body_id box = th_body(w, &d);
+    d.mass = 6.0f;
+    tb_body_id box6 = th_body(w, &d);
+    float m;
+    tb_vec3 I;
+    th_assert_ok(tb_body_get_mass(w, sph, &m, &I));
+    double ms = 4.0 / 3.0 * PI * 0.125 * 1000.0;
+    th_assert_near(m, ms, 0, 1e-5);
+    th_assert_vec3_near(I, th_v3((float)(0.4 * ms * 0.25), (float)(0.4 * ms * 0.25),
+                                 (float)(0.4 * ms * 0.25)), 0, 1e-5);
+    th_assert_ok(tb_body_get_mass(w, box, &m, &I));
+    th_assert_near(m, 8 * 0.5 * 1 * 2 * 1000.0, 0, 1e-6);
+    th_assert_vec3_near(I, th_v3(8000.f / 3 * 5, 8000.f / 3 * 4.25f, 8000.f / 3 * 1.25f), 0, 1e-5);
+    th_assert_ok(tb_body_get_mass(w, box6, &m, &I));
+    th_assert_near(m, 6.0, 0, 1e-7);
+    th_assert_vec3_near(I, th_v3(2 * 5.0f, 2 * 4.25f, 2 * 1.25f), 0, 1e-5);
+    th_world_destroy(w);
+}
+
+/* (g) gravity_scale multiplies gravity per body (0: weightless); tb_world_set_gravity is
+ * used from the next step on. */
+static void test_gravity_scale_and_set_gravity(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_vec3 g = tb_world_get_gravity(w);
+    tb_shape_id s = th_sphere(w, 0.25f);
+    const float scales[3] = { 0.0f, 1.0f, 0.5f };
+    tb_body_id ids[3];
+    ref_body ref[3];
+    for (int i = 0; i < 3; i++) {
+        tb_body_def d = th_dynamic_def(s, th_v3(2.0f * i, 0, 0));
+        d.gravity_scale = scales[i];
+        ids[i] = th_body(w, &d);
+        ref[i] = ref_make(d.position, d.linear_velocity);
+    }
+    th_assert_ok(tb_world_step_n(w, DT, 30));
+    for (int i = 0; i < 3; i++) {
+        ref_step(&ref[i], g, scales[i], 0, 30);
+        assert_matches_ref(w, ids[i], &ref[i], 1e-4, 1e-5);
+    }
+    tb_vec3 p, v, av;
+    th_read_pose(w, ids[0], &p, NULL);
+    th_assert_vec3_near(p, th_v3(0, 0, 0), 0, 0); /* exactly still */
+
+    const tb_vec3 g2 = th_v3(2, 0, -1);
+    th_assert_ok(tb_world_set_gravity(w, g2));
+    g = tb_world_get_gravity(w);
+    th_assert_vec3_near(g, g2, 0, 0);
+    th_assert_ok(tb_world_step_n(w, DT, 10));
+    for (int i = 0; i < 3; i++) {
+        ref_step(&ref[i], g2, scales[i], 0, 10);
+        assert_matches_ref(w, ids[i], &ref[i], 1e-4, 1e-5);
+    }
+    th_assert_ok(tb_body_get_velocity(w, ids[0], &v, &av));
+    th_assert_vec3_near(v, th_v3(0, 0, 0), 0, 0);
+    th_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_free_fall),
+        cmocka_unit_test(test_principal_spin),
+        cmocka_unit_test(test_spin_clamp),
+        cmocka_unit_test(test_static_never_moves),
+        cmocka_unit_test(test_damping),
+        cmocka_unit_test(test_apply_impulse),
+        cmocka_unit_test(test_mass_from_shape),
+        cmocka_unit_test(test_gravity_scale_and_set_gravity),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,127 @@
+/* The GPU layout seen from C must be exactly the layout the shaders assume (std140/std430
+ * with vec4-sized members), and its constants must agree with the public header. No GPU. */
+#include "harness.h"
+#include "layout.h"
+
+#include <string.h>
+
+/* Every member is one 16-byte vector, so C and GLSL agree only if C adds no padding. */
+static void test_vec4_types(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_gpu_vec4), 16);
+    assert_int_equal(sizeof(tb_gpu_uvec4), 16);
+    assert_int_equal(offsetof(tb_gpu_vec4, x), 0);
+    assert_int_equal(offsetof(tb_gpu_vec4, y), 4);
+    assert_int_equal(offsetof(tb_gpu_vec4, z), 8);
+    assert_int_equal(offsetof(tb_gpu_vec4, w), 12);
+    assert_int_equal(offsetof(tb_gpu_uvec4, x), 0);
+    assert_int_equal(offsetof(tb_gpu_uvec4, w), 12);
+}
+
+static void test_params_layout(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_gpu_params), 64);
+    assert_int_equal(offsetof(tb_gpu_params, gravity), 0);
+    assert_int_equal(offsetof(tb_gpu_params, counts), 16);
+    assert_int_equal(offsetof(tb_gpu_params, limits), 32);
+    assert_int_equal(offsetof(tb_gpu_params, body_dispatch), 48);
+    /* vkCmdDispatchIndirect reads three uint32 at this offset of the params buffer. */
+    assert_int_equal(TB_PARAMS_BODY_DISPATCH_OFFSET, offsetof(tb_gpu_params, body_dispatch));
+    assert_int_equal(TB_PARAMS_BODY_DISPATCH_OFFSET % 4, 0);
+    /* A uniform block is a whole number of vec4. */
+    assert_int_equal(sizeof(tb_gpu_params) % 16, 0);
+}
+
+static void test_shape_layout(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_gpu_shape), 64);
+    assert_int_equal(offsetof(tb_gpu_shape, aabb_center), 0);
+    assert_int_equal(offsetof(tb_gpu_shape, aabb_half), 16);
+    assert_int_equal(offsetof(tb_gpu_shape, params), 32);
+    assert_int_equal(offsetof(tb_gpu_shape, info), 48);
+    /* std430 array stride of the struct is its size rounded to 16. */
+    assert_int_equal(sizeof(tb_gpu_shape) % 16, 0);
+}
+
+/* The host writes tb_shape_type straight into info.x. */
+static void test_shape_type_values(void** state)
+{
+    (void)state;
+    assert_int_equal(TB_GPU_SHAPE_SPHERE, (unsigned)TB_SHAPE_SPHERE);
+    assert_int_equal(TB_GPU_SHAPE_BOX, (unsigned)TB_SHAPE_BOX);
+    assert_int_equal(TB_GPU_SHAPE_PLANE, (unsigned)TB_SHAPE_PLANE);
+}
+
+/* Two bindings on one index would alias two buffers in the descriptor set. */
+static void test_bindings_distinct(void** state)
+{
+    (void)state;
+    const int b[] = { TB_BIND_PARAMS, TB_BIND_BODY_POS, TB_BIND_BODY_ROT, TB_BIND_BODY_LINVEL,
+                      TB_BIND_BODY_ANGVEL, TB_BIND_BODY_INV_INERTIA, TB_BIND_BODY_INFO,
+                      TB_BIND_BODY_AABB_MIN, TB_BIND_BODY_AABB_MAX, TB_BIND_SHAPES };
+    const int n = (int)(sizeof b / sizeof b[0]);
+    for (int i = 0; i < n; i++) {
+        assert_in_range(b[i], 0, TB_BIND_COUNT - 1);
+        for (int j = i + 1; j < n; j++) assert_int_not_equal(b[i], b[j]);
+    }
+    /* TB_BIND_COUNT sizes the descriptor set layout: no unused holes expected. */
+    assert_int_equal(n, TB_BIND_COUNT);
+}
+
+static void test_stage_ids(void** state)
+{
+    (void)state;
+    const int s[] = { TB_STAGE_APPLY_FORCES, TB_STAGE_INTEGRATE, TB_STAGE_WORLD_AABB };
+    const int n = (int)(sizeof s / sizeof s[0]);
+    /* The ids are the step order: forces, then integration, then bounds of the new poses. */
+    for (int i = 0; i < n; i++) assert_int_equal(s[i], i);
+    assert_int_equal(TB_STAGE_COUNT, n);
+    assert_int_not_equal(TB_SPEC_WORKGROUP_SIZE, TB_SPEC_SUBGROUP_SIZE);
+}
+
+static void test_misc_constants(void** state)
+{
+    (void)state;
+    /* Flags are distinct single bits. */
+    assert_int_equal(TB_BODY_FLAG_ALIVE & TB_BODY_FLAG_DYNAMIC, 0);
+    assert_int_equal(TB_BODY_FLAG_ALIVE & (TB_BODY_FLAG_ALIVE - 1), 0);
+    assert_int_equal(TB_BODY_FLAG_DYNAMIC & (TB_BODY_FLAG_DYNAMIC - 1), 0);
+    /* Workgroup size: a power of two that a subgroup of 4, 8, 32 or 64 divides. */
+    assert_true(TB_WORKGROUP_SIZE >= 64 && (TB_WORKGROUP_SIZE & (TB_WORKGROUP_SIZE - 1)) == 0);
+    /* The unbounded extent must survive squaring in float (no inf in distance math). */
+    float e = (float)TB_UNBOUNDED_EXTENT;
+    assert_true(e * e < 3.0e38f);
+    assert_true(e >= 1.0e17f);
+}
+
+/* The public ABI: ids and result codes are pinned sizes. */
+static void test_public_abi_sizes(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_result), 4);
+    assert_int_equal(sizeof(tb_body_id), 8);
+    assert_int_equal(sizeof(tb_shape_id), 8);
+    assert_int_equal(sizeof(tb_vec3), 12);
+    assert_int_equal(sizeof(tb_quat), 16);
+    assert_int_equal(offsetof(tb_quat, w), 12);
+    assert_int_equal(sizeof(tb_shape_type), 4);
+    assert_int_equal(sizeof(tb_body_type), 4);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_vec4_types),
+        cmocka_unit_test(test_params_layout),
+        cmocka_unit_test(test_shape_layout),
+        cmocka_unit_test(test_shape_type_values),
+        cmocka_unit_test(test_bindings_distinct),
+        cmocka_unit_test(test_stage_ids),
+        cmocka_unit_test(test_misc_constants),
+        cmocka_unit_test(test_public_abi_sizes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,449 @@
+/* bench: times a scene step by step on one device and prints a table plus one JSON line.
+ *
+ *   bench --scene NAME --n N --steps S [--warmup W] [--seed K] [--device D]
+ *         [--csv FILE] [--json-only] [--help]
+ *
+ * N or S of 0 mean the scene's defaults (`make bench` passes 0 when they are unset).
+ * The last line of stdout is always the JSON record, so scripts can take `tail -n 1`.
+ */
+#include "scenes.h"
+#include "tumble.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define STAGE_NAME_MAX 128
+
+typedef struct options {
+    const char* scene_name;
+    uint32_t n;
+    uint32_t steps;
+    uint32_t warmup;
+    uint32_t seed;
+    const char* device;   /* NULL: the library's choice (TUMBLE_DEVICE, else best GPU) */
+    const char* csv_path; /* NULL: no CSV row */
+    int json_only;
+} options;
+
+/* Per-step samples of the timed steps. Stages are matched by name, not index, so a
+ * stage that appears in only some steps still gets a correct median. */
+typedef struct samples {
+    uint32_t steps;
+    double* gpu_ms;
+    double* wall_ms;
+    uint32_t stage_count;
+    char stage_names[TB_MAX_STAGES][STAGE_NAME_MAX];
+    double* stage_ms[TB_MAX_STAGES];
+    uint32_t stage_samples[TB_MAX_STAGES];
+} samples;
+
+typedef struct summary {
+    double gpu_median, gpu_p90, wall_median;
+    double stage_median[TB_MAX_STAGES];
+} summary;
+
+/* ---- command line ---- */
+
+static void print_scenes(FILE* f)
+{
+    uint32_t count;
+    const scene* list = scene_list(&count);
+    fprintf(f, "scenes:\n");
+    for (uint32_t i = 0; i < count; i++)
+        fprintf(f, "  %-12s %s (default n %u, steps %u)\n", list[i].name,
+                list[i].description, list[i].default_n, list[i].default_steps);
+}
+
+static void print_usage(FILE* f)
+{
+    fprintf(f,
+            "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
+            "             [--device D] [--csv FILE] [--json-only] [--help]\n"
+            "  --n, --steps  0 or absent: the scene's default\n"
+            "  --warmup      untimed steps before timing (default 10)\n"
+            "  --seed        seed of the scene's jitter (default 1)\n"
+            "  --device      device index or name substring (default: TUMBLE_DEVICE, else "
+            "the best GPU)\n"
+            "  --csv         append one result row to FILE (header written if new)\n"
+            "  --json-only   print only the JSON line\n");
+    print_scenes(f);
+}
+
+static int parse_u32(const char* text, uint32_t* out)
+{
+    char* end;
+    errno = 0;
+    if (!text || *text == '\0' || *text == '-') return 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (errno || *end != '\0' || v > UINT32_MAX) return 0;
+    *out = (uint32_t)v;
+    return 1;
+}
+
+/* Returns -1 to go on, else the exit code (0 for --help, 2 for a bad command line). */
+static int parse_args(int argc, char** argv, options* o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char* a = argv[i];
+        const char* v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        int ok = 1, takes_value = 1;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--json-only") == 0) {
+            o->json_only = 1;
+            takes_value = 0;
+        } else if (!v) {
+            ok = 0;
+        } else if (strcmp(a, "--scene") == 0) {
+            o->scene_name = v;
+        } else if (strcmp(a, "--device") == 0) {
+            o->device = v;
+        } else if (strcmp(a, "--csv") == 0) {
+            o->csv_path = v;
+        } else if (strcmp(a, "--n") == 0) {
+            ok = parse_u32(v, &o->n);
+        } else if (strcmp(a, "--steps") == 0) {
+            ok = parse_u32(v, &o->steps);
+        } else if (strcmp(a, "--warmup") == 0) {
+            ok = parse_u32(v, &o->warmup);
+        } else if (strcmp(a, "--seed") == 0) {
+            ok = parse_u32(v, &o->seed);
+        } else {
+            fprintf(stderr, "bench: unknown option '%s'\n", a);
+            print_usage(stderr);
+            return 2;
+        }
+        if (!ok) {
+            fprintf(stderr, "bench: option '%s' needs a value%s\n", a,
+                    v ? " that is a non-negative integer" : "");
+            return 2;
+        }
+        i += takes_value;
+    }
+    return -1;
+}
+
+/* ---- statistics ---- */
+
+static int cmp_double(const void* a, const void* b)
+{
+    double x = *(const double*)a, y = *(const double*)b;
+    return (x > y) - (x < y);
+}
+
+/* Nearest-rank percentile (p in (0, 1]) of n values; sorts a copy. NAN when n is 0. */
+static double percentile(const double* values, uint32_t n, double p)
+{
+    if (n == 0) return NAN;
+    double* sorted = malloc(n * sizeof *sorted);
+    if (!sorted) return NAN;
+    memcpy(sorted, values, n * sizeof *sorted);
+    qsort(sorted, n, sizeof *sorted, cmp_double);
+    uint32_t rank = (uint32_t)ceil(p * n);
+    double v = sorted[rank ? rank - 1 : 0];
+    free(sorted);
+    return v;
+}
+
+static double median(const double* values, uint32_t n)
+{
+    if (n == 0) return NAN;
+    double* sorted = malloc(n * sizeof *sorted);
+    if (!sorted) return NAN;
+    memcpy(sorted, values, n * sizeof *sorted);
+    qsort(sorted, n, sizeof *sorted, cmp_double);
+    double v = (n % 2) ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
+    free(sorted);
+    return v;
+}
+
+/* ---- samples ---- */
+
+static int samples_init(samples* s, uint32_t steps)
+{
+    memset(s, 0, sizeof *s);
+    s->steps = steps;
+    size_t n = steps ? steps : 1;
+    s->gpu_ms = malloc(n * sizeof *s->gpu_ms);
+    s->wall_ms = malloc(n * sizeof *s->wall_ms);
+    return s->gpu_ms && s->wall_ms;
+}
+
+static void samples_free(samples* s)
+{
+    free(s->gpu_ms);
+    free(s->wall_ms);
+    for (uint32_t i = 0; i < s->stage_count; i++) free(s->stage_ms[i]);
+}
+
+/* Index of the stage named `name`, adding it if new; -1 when out of room. */
+static int samples_stage(samples* s, const char* name)
+{
+    for (uint32_t i = 0; i < s->stage_count; i++)
+        if (strcmp(s->stage_names[i], name) == 0) return (int)i;
+    if (s->stage_count == TB_MAX_STAGES) return -1;
+    uint32_t i = s->stage_count;
+    s->stage_ms[i] = malloc((s->steps ? s->steps : 1) * sizeof(double));
+    if (!s->stage_ms[i]) return -1;
+    snprintf(s->stage_names[i], STAGE_NAME_MAX, "%s", name);
+    s->stage_count++;
+    return (int)i;
+}
+
+static void samples_add(samples* s, uint32_t step, double wall_ms, const tb_world_stats* st)
+{
+    s->wall_ms[step] = wall_ms;
+    s->gpu_ms[step] = st->gpu_ms;
+    for (uint32_t i = 0; i < st->stage_count && i < TB_MAX_STAGES; i++) {
+        int k = samples_stage(s, st->stages[i].name ? st->stages[i].name : "?");
+        if (k < 0) continue;
+        s->stage_ms[k][s->stage_samples[k]++] = st->stages[i].ms;
+    }
+}
+
+static void summarise(const samples* s, summary* out)
+{
+    out->gpu_median = median(s->gpu_ms, s->steps);
+    out->gpu_p90 = percentile(s->gpu_ms, s->steps, 0.9);
+    out->wall_median = median(s->wall_ms, s->steps);
+    for (uint32_t i = 0; i < s->stage_count; i++)
+        out->stage_median[i] = median(s->stage_ms[i], s->stage_samples[i]);
+}
+
+/* ---- running ---- */
+
+static double now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+static int fail(const tb_world* world, const char* call, tb_result r)
+{
+    fprintf(stderr, "bench: %s failed: %s: %s\n", call, tb_result_string(r),
+            tb_world_last_error(world));
+    return 1;
+}
+
+static tb_result timed_steps(tb_world* world, float dt, samples* s)
+{
+    for (uint32_t i = 0; i < s->steps; i++) {
+        double t0 = now_ms();
+        tb_result r = tb_world_step(world, dt);
+        double t1 = now_ms();
+        if (r != TB_OK) return r;
+        tb_world_stats st;
+        r = tb_world_get_stats(world, &st);
+        if (r != TB_OK) return r;
+        samples_add(s, i, t1 - t0, &st);
+    }
+    return TB_OK;
+}
+
+/* ---- output ---- */
+
+/* JSON numbers cannot be NaN or infinite; those become null. */
+static void json_number(FILE* f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.9g", v);
+    else fputs("null", f);
+}
+
+static void json_string(FILE* f, const char* text)
+{
+    fputc('"', f);
+    for (const unsigned char* p = (const unsigned char*)text; *p; p++) {
+        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+        else if (*p == '\n') fputs("\\n", f);
+        else if (*p == '\t') fputs("\\t", f);
+        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static void json_key(FILE* f, const char* key)
+{
+    fputs(", ", f);
+    json_string(f, key);
+    fputs(": ", f);
+}
+
+typedef struct report {
+    const tb_device_info* dev;
+    const scene* sc;
+    uint32_t n, steps, body_count;
+    const samples* s;
+    const summary* sum;
+    const scene_checks* checks;
+} report;
+
+static void print_json(FILE* f, const report* r)
+{
+    fputs("{\"device\": ", f);
+    json_string(f, r->dev->name);
+    json_key(f, "driver");
+    json_string(f, r->dev->driver);
+    fprintf(f, ", \"subgroup_size\": %u", r->dev->subgroup_size);
+    json_key(f, "scene");
+    json_string(f, r->sc->name);
+    fprintf(f, ", \"n\": %u, \"steps\": %u", r->n, r->steps);
+    json_key(f, "ms_step_median");
+    json_number(f, r->sum->gpu_median);
+    json_key(f, "ms_step_p90");
+    json_number(f, r->sum->gpu_p90);
+    json_key(f, "ms_wall_median");
+    json_number(f, r->sum->wall_median);
+    fputs(", \"stages\": {", f);
+    for (uint32_t i = 0; i < r->s->stage_count; i++) {
+        if (i) fputs(", ", f);
+        json_string(f, r->s->stage_names[i]);
+        fputs(": ", f);
+        json_number(f, r->sum->stage_median[i]);
+    }
+    fprintf(f, "}, \"body_count\": %u", r->body_count);
+    for (uint32_t i = 0; i < r->checks->count; i++) {
+        json_key(f, r->checks->items[i].key);
+        json_number(f, r->checks->items[i].value);
+    }
+    fputs("}\n", f);
+}
+
+static void print_table(FILE* f, const report* r)
+{
+    fprintf(f, "device         %s\n", r->dev->name);
+    fprintf(f, "driver         %s\n", r->dev->driver);
+    fprintf(f, "subgroup size  %u\n", r->dev->subgroup_size);
+    fprintf(f, "scene          %s\n", r->sc->name);
+    fprintf(f, "n              %u (bodies %u)\n", r->n, r->body_count);
+    fprintf(f, "steps          %u\n", r->steps);
+    fprintf(f, "gpu ms/step    median %.4f  p90 %.4f\n", r->sum->gpu_median, r->sum->gpu_p90);
+    fprintf(f, "wall ms/step   median %.4f\n", r->sum->wall_median);
+    fprintf(f, "stages (median ms)\n");
+    for (uint32_t i = 0; i < r->s->stage_count; i++)
+        fprintf(f, "  %-32s %.4f\n", r->s->stage_names[i], r->sum->stage_median[i]);
+    fprintf(f, "checks\n");
+    for (uint32_t i = 0; i < r->checks->count; i++)
+        fprintf(f, "  %-32s %.6g\n", r->checks->items[i].key, r->checks->items[i].value);
+}
+
+/* A CSV field, quoted because device names contain commas ("llvmpipe (LLVM 15, 256 bits)"). */
+static void csv_string(FILE* f, const char* text)
+{
+    fputc('"', f);
+    for (const char* p = text; *p; p++) {
+        if (*p == '"') fputc('"', f);
+        fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static int append_csv(const char* path, const report* r)
+{
+    FILE* f = fopen(path, "a");
+    if (!f) {
+        fprintf(stderr, "bench: cannot open '%s' for appending: %s\n", path, strerror(errno));
+        return 0;
+    }
+    /* "a" mode's initial position is implementation-defined; seek to learn the size. */
+    fseek(f, 0, SEEK_END);
+    if (ftell(f) == 0)
+        fputs("device,scene,n,steps,ms_step_median,ms_step_p90,ms_wall_median,stages\n", f);
+    csv_string(f, r->dev->name);
+    fprintf(f, ",%s,%u,%u,%.6f,%.6f,%.6f,\"", r->sc->name, r->n, r->steps,
+            r->sum->gpu_median, r->sum->gpu_p90, r->sum->wall_median);
+    for (uint32_t i = 0; i < r->s->stage_count; i++)
+        fprintf(f, "%s%s=%.6f", i ? ";" : "", r->s->stage_names[i], r->sum->stage_median[i]);
+    fputs("\"\n", f);
+    int ok = !ferror(f);
+    if (fclose(f) != 0) ok = 0;
+    if (!ok) fprintf(stderr, "bench: writing '%s' failed\n", path);
+    return ok;
+}
+
+/* ---- main ---- */
+
+static tb_world* create_world(const options* o)
+{
+    tb_world_def def = tb_default_world_def();
+    /* Room beyond n so the timed steps never grow buffers (growth re-records). */
+    def.initial_body_capacity = o->n <= UINT32_MAX - 16 ? o->n + 16 : o->n;
+    def.device = o->device;
+    tb_world* world = NULL;
+    tb_result r = tb_world_create(&def, &world);
+    if (r != TB_OK) fail(NULL, "tb_world_create", r);
+    return world;
+}
+
+/* Builds, warms up, times and checks; fills what the report needs. Returns the exit code. */
+static int run_bench(tb_world* world, const scene* sc, const options* o, samples* s,
+                     tb_device_info* dev, scene_checks* checks, uint32_t* body_count)
+{
+    tb_result r = tb_world_device_info(world, dev);
+    if (r != TB_OK) return fail(world, "tb_world_device_info", r);
+    scene_params params = { o->n, o->seed };
+    scene_instance* inst = NULL;
+    r = sc->build(world, &params, &inst);
+    if (r != TB_OK) return fail(world, "scene build", r);
+    tb_world_stats st;
+    int code = 0;
+    if (o->warmup && (r = tb_world_step_n(world, sc->dt, o->warmup)) != TB_OK)
+        code = fail(world, "tb_world_step_n (warm-up)", r);
+    else if ((r = timed_steps(world, sc->dt, s)) != TB_OK)
+        code = fail(world, "tb_world_step", r);
+    else if ((r = sc->check(world, inst, o->warmup + o->steps, sc->dt, checks)) != TB_OK)
+        code = fail(world, "scene check", r);
+    else if ((r = tb_world_get_stats(world, &st)) != TB_OK)
+        code = fail(world, "tb_world_get_stats", r);
+    else
+        *body_count = st.body_count;
+    sc->destroy(inst);
+    return code;
+}
+
+int main(int argc, char** argv)
+{
+    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0 };
+    int code = parse_args(argc, argv, &o);
+    if (code >= 0) return code;
+    const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);
+    if (!sc) {
+        fprintf(stderr, "bench: unknown scene '%s'\n", o.scene_name);
+        print_scenes(stderr);
+        return 2;
+    }
+    if (o.n == 0) o.n = sc->default_n;
+    if (o.steps == 0) o.steps = sc->default_steps;
+
+    samples s;
+    if (!samples_init(&s, o.steps)) {
+        fprintf(stderr, "bench: out of host memory for %u samples\n", o.steps);
+        return 1;
+    }
+    tb_world* world = create_world(&o);
+    if (!world) {
+        samples_free(&s);
+        return 1;
+    }
+    tb_device_info dev;
+    scene_checks checks = { 0 };
+    uint32_t body_count = 0;
+    code = run_bench(world, sc, &o, &s, &dev, &checks, &body_count);
+    tb_world_destroy(world);
+    if (code == 0) {
+        summary sum;
+        summarise(&s, &sum);
+        report rep = { &dev, sc, o.n, o.steps, body_count, &s, &sum, &checks };
+        if (!o.json_only) print_table(stdout, &rep);
+        print_json(stdout, &rep);
+        if (o.csv_path && !append_csv(o.csv_path, &rep)) code = 1;
+    }
+    samples_free(&s);
+    return code;
+}

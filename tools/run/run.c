@@ -1,0 +1,217 @@
+/* tumble-run: what `make run` runs. Builds the default scene on the best device, steps it
+ * in chunks with a progress line each, then prints speed, stage times, checks and a few
+ * bodies' positions.
+ *
+ *   tumble-run [--scene NAME] [--n N] [--steps S]
+ *
+ * The device is the library's choice: TUMBLE_DEVICE if set, else the best GPU.
+ */
+#include "scenes.h"
+#include "tumble.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define CHUNKS 10
+#define SHOWN_BODIES 3
+
+typedef struct options {
+    const char* scene_name; /* NULL: scene_default() */
+    uint32_t n;             /* 0: the scene's default */
+    uint32_t steps;         /* 0: the scene's default */
+} options;
+
+static void print_usage(FILE* f)
+{
+    uint32_t count;
+    const scene* list = scene_list(&count);
+    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S]\nscenes:\n");
+    for (uint32_t i = 0; i < count; i++)
+        fprintf(f, "  %-12s %s\n", list[i].name, list[i].description);
+}
+
+static int parse_u32(const char* text, uint32_t* out)
+{
+    char* end;
+    errno = 0;
+    if (!text || *text == '\0' || *text == '-') return 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (errno || *end != '\0' || v > UINT32_MAX) return 0;
+    *out = (uint32_t)v;
+    return 1;
+}
+
+/* Returns -1 to go on, else the exit code (0 for --help, 2 for a bad command line). */
+static int parse_args(int argc, char** argv, options* o)
+{
+    for (int i = 1; i < argc; i++) {
+        const char* a = argv[i];
+        const char* v = (i + 1 < argc) ? argv[i + 1] : NULL;
+        int ok = v != NULL;
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            print_usage(stdout);
+            return 0;
+        } else if (strcmp(a, "--scene") == 0) {
+            o->scene_name = v;
+        } else if (strcmp(a, "--n") == 0) {
+            ok = ok && parse_u32(v, &o->n);
+        } else if (strcmp(a, "--steps") == 0) {
+            ok = ok && parse_u32(v, &o->steps);
+        } else {
+            fprintf(stderr, "tumble-run: unknown option '%s'\n", a);
+            print_usage(stderr);
+            return 2;
+        }
+        if (!ok) {
+            fprintf(stderr, "tumble-run: option '%s' needs a non-negative integer or name\n", a);
+            return 2;
+        }
+        i++;
+    }
+    return -1;
+}
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+static int fail(const tb_world* world, const char* call, tb_result r)
+{
+    fprintf(stderr, "tumble-run: %s failed: %s: %s\n", call, tb_result_string(r),
+            tb_world_last_error(world));
+    return 1;
+}
+
+static int print_device(const tb_world* world)
+{
+    tb_device_info dev;
+    tb_result r = tb_world_device_info(world, &dev);
+    if (r != TB_OK) return fail(world, "tb_world_device_info", r);
+    printf("device: %s\ndriver: %s\nsubgroup size: %u%s\n", dev.name, dev.driver,
+           dev.subgroup_size, dev.is_cpu ? " (CPU device)" : "");
+    return 0;
+}
+
+/* Steps in CHUNKS pieces with a progress line each; *wall_s gets the time spent stepping
+ * (read-backs for the progress lines excluded). */
+static int step_in_chunks(tb_world* world, const scene* sc, const tb_body_id* sample,
+                          uint32_t steps, double* wall_s)
+{
+    uint32_t done = 0;
+    *wall_s = 0.0;
+    for (uint32_t c = 0; c < CHUNKS && done < steps; c++) {
+        /* Spread the remainder over the first chunks so the total is exactly `steps`. */
+        uint32_t chunk = steps / CHUNKS + (c < steps % CHUNKS ? 1 : 0);
+        if (chunk == 0) continue;
+        double t0 = now_s();
+        tb_result r = tb_world_step_n(world, sc->dt, chunk);
+        *wall_s += now_s() - t0;
+        if (r != TB_OK) return fail(world, "tb_world_step_n", r);
+        done += chunk;
+        printf("step %6u  t = %7.3f s", done, (double)done * sc->dt);
+        if (sample) {
+            tb_vec3 p;
+            r = tb_world_read_transforms(world, sample, 1, &p, NULL);
+            if (r != TB_OK) return fail(world, "tb_world_read_transforms", r);
+            printf("  body 0 height %.4f m", p.y);
+        }
+        printf("\n");
+    }
+    return 0;
+}
+
+static int print_stats(const tb_world* world)
+{
+    tb_world_stats st;
+    tb_result r = tb_world_get_stats(world, &st);
+    if (r != TB_OK) return fail(world, "tb_world_get_stats", r);
+    printf("bodies %u, steps %llu, submits %llu, records %llu, buffer growths %llu\n",
+           st.body_count, (unsigned long long)st.steps, (unsigned long long)st.submits,
+           (unsigned long long)st.records, (unsigned long long)st.buffer_growths);
+    printf("last step GPU time %.4f ms\n", st.gpu_ms);
+    for (uint32_t i = 0; i < st.stage_count && i < TB_MAX_STAGES; i++)
+        printf("  %-32s %.4f ms\n", st.stages[i].name ? st.stages[i].name : "?",
+               st.stages[i].ms);
+    return 0;
+}
+
+static int print_checks(tb_world* world, const scene* sc, const scene_instance* inst,
+                        uint32_t steps)
+{
+    scene_checks checks = { 0 };
+    tb_result r = sc->check(world, inst, steps, sc->dt, &checks);
+    if (r != TB_OK) return fail(world, "scene check", r);
+    printf("checks:\n");
+    for (uint32_t i = 0; i < checks.count; i++)
+        printf("  %-12s %.6g\n", checks.items[i].key, checks.items[i].value);
+    return 0;
+}
+
+static int print_bodies(tb_world* world, const tb_body_id* ids, uint32_t count)
+{
+    uint32_t shown = count < SHOWN_BODIES ? count : SHOWN_BODIES;
+    tb_vec3 pos[SHOWN_BODIES];
+    tb_quat rot[SHOWN_BODIES];
+    if (shown == 0) return 0;
+    tb_result r = tb_world_read_transforms(world, ids, shown, pos, rot);
+    if (r != TB_OK) return fail(world, "tb_world_read_transforms", r);
+    for (uint32_t i = 0; i < shown; i++)
+        printf("body %u: position (%.4f, %.4f, %.4f) rotation (%.4f, %.4f, %.4f, %.4f)\n", i,
+               pos[i].x, pos[i].y, pos[i].z, rot[i].x, rot[i].y, rot[i].z, rot[i].w);
+    return 0;
+}
+
+/* Everything after world creation. Returns the exit code. */
+static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t steps)
+{
+    scene_params params = { n, 1 };
+    scene_instance* inst = NULL;
+    tb_result r = sc->build(world, &params, &inst);
+    if (r != TB_OK) return fail(world, "scene build", r);
+    uint32_t count;
+    const tb_body_id* ids = scene_body_ids(inst, &count);
+    printf("scene %s: %u bodies, %u steps of %.5f s\n", sc->name, count, steps, sc->dt);
+
+    double wall_s = 0.0;
+    int code = step_in_chunks(world, sc, count ? ids : NULL, steps, &wall_s);
+    if (!code) {
+        printf("%.1f steps/s (%.3f s wall for %u steps)\n",
+               wall_s > 0.0 ? steps / wall_s : 0.0, wall_s, steps);
+        code = print_stats(world);
+    }
+    if (!code) code = print_checks(world, sc, inst, steps);
+    if (!code) code = print_bodies(world, ids, count);
+    sc->destroy(inst);
+    return code;
+}
+
+int main(int argc, char** argv)
+{
+    options o = { NULL, 0, 0 };
+    int code = parse_args(argc, argv, &o);
+    if (code >= 0) return code;
+    const scene* sc = o.scene_name ? scene_find(o.scene_name) : scene_default();
+    if (!sc) {
+        fprintf(stderr, "tumble-run: unknown scene '%s'\n", o.scene_name);
+        print_usage(stderr);
+        return 2;
+    }
+    uint32_t n = o.n ? o.n : sc->default_n;
+    uint32_t steps = o.steps ? o.steps : sc->default_steps;
+
+    tb_world_def def = tb_default_world_def();
+    def.initial_body_capacity = n <= UINT32_MAX - 16 ? n + 16 : n; /* no growth mid-run */
+    tb_world* world = NULL;
+    tb_result r = tb_world_create(&def, &world);
+    if (r != TB_OK) return fail(NULL, "tb_world_create", r);
+    code = print_device(world);
+    if (!code) code = run_scene(world, sc, n, steps);
+    tb_world_destroy(world);
+    return code;
+}

@@ -1,0 +1,256 @@
+/* Scene registry and the scenes themselves (see scenes.h).
+ *
+ * Each scene is one row of `scenes[]` below: adding a scene means writing its build /
+ * check / destroy functions and adding one line to the table.
+ */
+#include "scenes.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* What any scene keeps after building: the ids it made (dynamic first) and, for scenes
+ * whose result has a closed form, each body's initial position and velocity. */
+struct scene_instance {
+    uint32_t count;
+    tb_body_id* ids;
+    tb_vec3* x0;
+    tb_vec3* v0;
+};
+
+static scene_instance* instance_alloc(uint32_t count)
+{
+    scene_instance* inst = calloc(1, sizeof *inst);
+    if (!inst) return NULL;
+    size_t n = count ? count : 1; /* malloc(0) may return NULL */
+    inst->count = count;
+    inst->ids = malloc(n * sizeof *inst->ids);
+    inst->x0 = malloc(n * sizeof *inst->x0);
+    inst->v0 = malloc(n * sizeof *inst->v0);
+    if (!inst->ids || !inst->x0 || !inst->v0) {
+        free(inst->ids); free(inst->x0); free(inst->v0); free(inst);
+        return NULL;
+    }
+    return inst;
+}
+
+static void instance_free(scene_instance* inst)
+{
+    if (!inst) return;
+    free(inst->ids);
+    free(inst->x0);
+    free(inst->v0);
+    free(inst);
+}
+
+/* ---- deterministic jitter: xorshift32, so every run of a seed builds the same scene ---- */
+
+static uint32_t rng_next(uint32_t* state)
+{
+    uint32_t x = *state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *state = x;
+    return x;
+}
+
+/* Uniform in [-1, 1). */
+static float rng_signed(uint32_t* state)
+{
+    return (float)((double)rng_next(state) / 2147483648.0 - 1.0);
+}
+
+static uint32_t rng_seed(uint32_t seed)
+{
+    /* xorshift has a fixed point at 0; scramble so nearby seeds diverge at once. */
+    uint32_t s = seed * 2654435761u + 0x9e3779b9u;
+    return s ? s : 1u;
+}
+
+static tb_vec3 rng_vec3(uint32_t* state, float scale)
+{
+    tb_vec3 v;
+    v.x = scale * rng_signed(state);
+    v.y = scale * rng_signed(state);
+    v.z = scale * rng_signed(state);
+    return v;
+}
+
+/* ---- freefall: bodies in free flight, no ground, compared with the closed form ---- */
+
+#define FREEFALL_SPACING 2.0f      /* m between grid cells */
+/* Jitter and drift are kept small so no two bodies (box half diagonal 0.71 m) can meet
+ * within a few hundred steps: the scene measures integration alone, not contacts. */
+#define FREEFALL_JITTER 0.05f      /* m */
+#define FREEFALL_LIN_SPEED 0.05f   /* m/s per axis */
+#define FREEFALL_ANG_SPEED 3.0f    /* rad/s per axis */
+
+static uint32_t grid_side(uint32_t n)
+{
+    uint32_t side = (uint32_t)ceil(cbrt((double)n));
+    while ((uint64_t)side * side * side < n) side++; /* cbrt rounding */
+    return side ? side : 1;
+}
+
+/* Cell i of a side^3 grid centred on the origin in x and z, bottom layer 10 m up. */
+static tb_vec3 grid_position(uint32_t i, uint32_t side)
+{
+    float half = 0.5f * (float)(side - 1) * FREEFALL_SPACING;
+    tb_vec3 p;
+    p.x = (float)(i % side) * FREEFALL_SPACING - half;
+    p.z = (float)((i / side) % side) * FREEFALL_SPACING - half;
+    p.y = (float)(i / (side * side)) * FREEFALL_SPACING + 10.0f;
+    return p;
+}
+
+static void freefall_fill_defs(tb_body_def* defs, uint32_t n, uint32_t seed,
+                               tb_shape_id sphere, tb_shape_id box)
+{
+    uint32_t rng = rng_seed(seed);
+    uint32_t side = grid_side(n);
+    for (uint32_t i = 0; i < n; i++) {
+        tb_body_def d = tb_default_body_def();
+        tb_vec3 p = grid_position(i, side);
+        tb_vec3 j = rng_vec3(&rng, FREEFALL_JITTER);
+        d.shape = (i % 2 == 0) ? sphere : box;
+        d.position.x = p.x + j.x;
+        d.position.y = p.y + j.y;
+        d.position.z = p.z + j.z;
+        d.linear_velocity = rng_vec3(&rng, FREEFALL_LIN_SPEED);
+        d.angular_velocity = rng_vec3(&rng, FREEFALL_ANG_SPEED);
+        defs[i] = d;
+    }
+}
+
+static tb_result freefall_shapes(tb_world* world, tb_shape_id* sphere, tb_shape_id* box)
+{
+    tb_shape_def sd = tb_default_shape_def();
+    tb_vec3 half = { 0.5f, 0.3f, 0.4f };
+    tb_result r = tb_shape_create_sphere(world, &sd, 0.5f, sphere);
+    if (r != TB_OK) return r;
+    return tb_shape_create_box(world, &sd, half, box);
+}
+
+static tb_result freefall_build(tb_world* world, const scene_params* params,
+                                scene_instance** out)
+{
+    *out = NULL;
+    uint32_t n = params->n;
+    tb_shape_id sphere, box;
+    tb_result r = freefall_shapes(world, &sphere, &box);
+    if (r != TB_OK) return r;
+
+    scene_instance* inst = instance_alloc(n);
+    tb_body_def* defs = malloc((n ? n : 1) * sizeof *defs);
+    if (!inst || !defs) {
+        free(defs);
+        instance_free(inst);
+        return TB_ERROR_OUT_OF_MEMORY;
+    }
+    freefall_fill_defs(defs, n, params->seed, sphere, box);
+    for (uint32_t i = 0; i < n; i++) {
+        inst->x0[i] = defs[i].position;
+        inst->v0[i] = defs[i].linear_velocity;
+    }
+    r = n ? tb_body_create_many(world, defs, n, inst->ids) : TB_OK;
+    free(defs);
+    if (r != TB_OK) {
+        instance_free(inst);
+        return r;
+    }
+    *out = inst;
+    return TB_OK;
+}
+
+static int vec3_finite(tb_vec3 v)
+{
+    return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
+}
+
+static int quat_finite(tb_quat q)
+{
+    return isfinite(q.x) && isfinite(q.y) && isfinite(q.z) && isfinite(q.w);
+}
+
+/* Semi-implicit Euler with gravity the only force: v_k = v0 + g*dt*k, x_k = x_{k-1} + v_k*dt,
+ * so x_k = x0 + v0*k*dt + g*dt^2*k(k+1)/2. Evaluated in double so the reference itself
+ * adds no error worth reporting. */
+static double freefall_error(tb_vec3 x, tb_vec3 x0, tb_vec3 v0, tb_vec3 g, double dt,
+                             double k)
+{
+    double t = k * dt, a = dt * dt * k * (k + 1.0) * 0.5;
+    double ex = (double)x0.x + (double)v0.x * t + (double)g.x * a - (double)x.x;
+    double ey = (double)x0.y + (double)v0.y * t + (double)g.y * a - (double)x.y;
+    double ez = (double)x0.z + (double)v0.z * t + (double)g.z * a - (double)x.z;
+    return sqrt(ex * ex + ey * ey + ez * ez);
+}
+
+static tb_result freefall_check(tb_world* world, const scene_instance* inst, uint32_t steps,
+                                float dt, scene_checks* out)
+{
+    uint32_t n = inst->count;
+    tb_vec3* pos = malloc((n ? n : 1) * sizeof *pos);
+    tb_quat* rot = malloc((n ? n : 1) * sizeof *rot);
+    if (!pos || !rot) {
+        free(pos); free(rot);
+        return TB_ERROR_OUT_OF_MEMORY;
+    }
+    tb_result r = n ? tb_world_read_transforms(world, inst->ids, n, pos, rot) : TB_OK;
+    if (r == TB_OK) {
+        tb_vec3 g = tb_world_get_gravity(world);
+        double max_error = 0.0;
+        uint32_t nan_count = 0;
+        for (uint32_t i = 0; i < n; i++) {
+            if (!vec3_finite(pos[i]) || !quat_finite(rot[i])) {
+                nan_count++;
+                continue;
+            }
+            double e = freefall_error(pos[i], inst->x0[i], inst->v0[i], g, dt, steps);
+            if (e > max_error) max_error = e;
+        }
+        out->count = 2;
+        out->items[0].key = "nan";
+        out->items[0].value = nan_count;
+        out->items[1].key = "max_error";
+        out->items[1].value = max_error;
+    }
+    free(pos);
+    free(rot);
+    return r;
+}
+
+/* ---- registry ---- */
+
+static const scene scenes[] = {
+    { "freefall", "spheres and boxes in free flight on a 3-D grid, no ground; checks "
+                  "positions against the closed form", 1.0f / 60.0f, 1000, 200,
+      freefall_build, freefall_check, instance_free },
+};
+
+#define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))
+
+const scene* scene_find(const char* name)
+{
+    if (!name) return NULL;
+    for (uint32_t i = 0; i < SCENE_COUNT; i++)
+        if (strcmp(scenes[i].name, name) == 0) return &scenes[i];
+    return NULL;
+}
+
+const scene* scene_list(uint32_t* count)
+{
+    if (count) *count = SCENE_COUNT;
+    return scenes;
+}
+
+const scene* scene_default(void)
+{
+    return scene_find("freefall");
+}
+
+const tb_body_id* scene_body_ids(const scene_instance* inst, uint32_t* count)
+{
+    if (count) *count = inst ? inst->count : 0;
+    return inst ? inst->ids : NULL;
+}
