@@ -36,7 +36,7 @@ TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
 TEST_CXX   := $(wildcard tests/*.cpp)
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run
 
-.PHONY: all deps test run bench clean check-exports
+.PHONY: all deps test run bench clean check-exports check-readme
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS)
 
@@ -113,7 +113,7 @@ $(BUILD)/tests/cxx_header: $(TEST_CXX) include/tumble.h
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
-test: deps all $(TEST_BIN) check-exports
+test: deps all $(TEST_BIN) check-exports check-readme
 	$(Q)fail=0; pass=0; \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
@@ -129,6 +129,14 @@ check-exports: $(BUILD)/libtumble.so
 	$(call say,CHECK,exports)
 	$(Q)bad=$$(nm -D --defined-only $< | awk '$$2 != "A" {print $$3}' | grep -v '^tb_' || true); \
 	if [ -n "$$bad" ]; then echo "non-tb_ symbols exported: $$bad"; exit 1; fi
+
+# The README's C example must compile warning-free and run.
+check-readme: $(BUILD)/libtumble.a
+	$(call say,CHECK,README.md)
+	@mkdir -p $(BUILD)/readme
+	$(Q)awk '/^```c$$/{f=1;next} /^```$$/{f=0} f' README.md > $(BUILD)/readme/example.c
+	$(Q)$(CC) $(CSTD) $(WARN) -Werror -Iinclude -o $(BUILD)/readme/example $(BUILD)/readme/example.c $(BUILD)/libtumble.a $(LIBS)
+	$(Q)env $(TEST_ENV) $(BUILD)/readme/example >/dev/null
 
 run: deps all
 	$(Q)$(BUILD)/tumble-run
