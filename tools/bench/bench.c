@@ -48,16 +48,6 @@ typedef struct summary {
 
 /* ---- command line ---- */
 
-static void print_scenes(FILE* f)
-{
-    uint32_t count;
-    const scene* list = scene_list(&count);
-    fprintf(f, "scenes:\n");
-    for (uint32_t i = 0; i < count; i++)
-        fprintf(f, "  %-12s %s (default n %u, steps %u)\n", list[i].name,
-                list[i].description, list[i].default_n, list[i].default_steps);
-}
-
 static void print_usage(FILE* f)
 {
     fprintf(f,
@@ -70,18 +60,7 @@ static void print_usage(FILE* f)
             "the best GPU)\n"
             "  --csv         append one result row to FILE (header written if new)\n"
             "  --json-only   print only the JSON line\n");
-    print_scenes(f);
-}
-
-static int parse_u32(const char* text, uint32_t* out)
-{
-    char* end;
-    errno = 0;
-    if (!text || *text == '\0' || *text == '-') return 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || *end != '\0' || v > UINT32_MAX) return 0;
-    *out = (uint32_t)v;
-    return 1;
+    scene_print_list(f);
 }
 
 /* Returns -1 to go on, else the exit code (0 for --help, 2 for a bad command line). */
@@ -106,13 +85,13 @@ static int parse_args(int argc, char** argv, options* o)
         } else if (strcmp(a, "--csv") == 0) {
             o->csv_path = v;
         } else if (strcmp(a, "--n") == 0) {
-            ok = parse_u32(v, &o->n);
+            ok = scene_parse_u32(v, &o->n);
         } else if (strcmp(a, "--steps") == 0) {
-            ok = parse_u32(v, &o->steps);
+            ok = scene_parse_u32(v, &o->steps);
         } else if (strcmp(a, "--warmup") == 0) {
-            ok = parse_u32(v, &o->warmup);
+            ok = scene_parse_u32(v, &o->warmup);
         } else if (strcmp(a, "--seed") == 0) {
-            ok = parse_u32(v, &o->seed);
+            ok = scene_parse_u32(v, &o->seed);
         } else {
             fprintf(stderr, "bench: unknown option '%s'\n", a);
             print_usage(stderr);
@@ -415,7 +394,7 @@ int main(int argc, char** argv)
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);
     if (!sc) {
         fprintf(stderr, "bench: unknown scene '%s'\n", o.scene_name);
-        print_scenes(stderr);
+        scene_print_list(stderr);
         return 2;
     }
     if (o.n == 0) o.n = sc->default_n;

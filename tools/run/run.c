@@ -26,22 +26,8 @@ typedef struct options {
 
 static void print_usage(FILE* f)
 {
-    uint32_t count;
-    const scene* list = scene_list(&count);
-    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S]\nscenes:\n");
-    for (uint32_t i = 0; i < count; i++)
-        fprintf(f, "  %-12s %s\n", list[i].name, list[i].description);
-}
-
-static int parse_u32(const char* text, uint32_t* out)
-{
-    char* end;
-    errno = 0;
-    if (!text || *text == '\0' || *text == '-') return 0;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || *end != '\0' || v > UINT32_MAX) return 0;
-    *out = (uint32_t)v;
-    return 1;
+    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S]\n");
+    scene_print_list(f);
 }
 
 /* Returns -1 to go on, else the exit code (0 for --help, 2 for a bad command line). */
@@ -57,9 +43,9 @@ static int parse_args(int argc, char** argv, options* o)
         } else if (strcmp(a, "--scene") == 0) {
             o->scene_name = v;
         } else if (strcmp(a, "--n") == 0) {
-            ok = ok && parse_u32(v, &o->n);
+            ok = ok && scene_parse_u32(v, &o->n);
         } else if (strcmp(a, "--steps") == 0) {
-            ok = ok && parse_u32(v, &o->steps);
+            ok = ok && scene_parse_u32(v, &o->steps);
         } else {
             fprintf(stderr, "tumble-run: unknown option '%s'\n", a);
             print_usage(stderr);

@@ -5,6 +5,7 @@
  */
 #include "scenes.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -253,4 +254,25 @@ const tb_body_id* scene_body_ids(const scene_instance* inst, uint32_t* count)
 {
     if (count) *count = inst ? inst->count : 0;
     return inst ? inst->ids : NULL;
+}
+
+int scene_parse_u32(const char* text, uint32_t* out)
+{
+    char* end;
+    errno = 0;
+    if (!text || *text == '\0' || *text == '-') return 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (errno || *end != '\0' || v > UINT32_MAX) return 0;
+    *out = (uint32_t)v;
+    return 1;
+}
+
+void scene_print_list(FILE* f)
+{
+    uint32_t count;
+    const scene* list = scene_list(&count);
+    fprintf(f, "scenes:\n");
+    for (uint32_t i = 0; i < count; i++)
+        fprintf(f, "  %-12s %s (default n %u, steps %u)\n", list[i].name,
+                list[i].description, list[i].default_n, list[i].default_steps);
 }

@@ -8,6 +8,7 @@
 #define TUMBLE_SCENES_H
 
 #include <stdint.h>
+#include <stdio.h>
 #include "tumble.h"
 
 #define SCENE_MAX_CHECKS 8
@@ -48,5 +49,11 @@ const scene* scene_default(void);
 
 /// Ids of the bodies a scene built, dynamic ones first (for readers such as `make run`).
 const tb_body_id* scene_body_ids(const scene_instance* inst, uint32_t* count);
+
+/* Command-line helpers shared by the tools. */
+/// Parse a decimal uint32 (no sign); returns 0 when the text is not one.
+int scene_parse_u32(const char* text, uint32_t* out);
+/// Print every scene as "  name  description (default n N, steps S)".
+void scene_print_list(FILE* f);
 
 #endif
