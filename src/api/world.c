@@ -53,13 +53,17 @@ static tb_result create_shape_buffer(tb_world* w, uint32_t capacity)
     w->shape_buffer_capacity = capacity;
     tb_pipelines_bind(&w->pipelines, TB_BIND_SHAPES, w->shape_buffer.buffer);
     tb_graph_invalidate(&w->graph);
+    w->buffer_generation++;
     w->shapes_dirty = 1;
     return TB_OK;
 }
 
-static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def)
+static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
+                                    const tb_gpu_options* extra)
 {
-    tb_gpu_options options = { def->device, def->validation || env_flag("TUMBLE_VALIDATION") };
+    tb_gpu_options options = *extra;
+    options.device = def->device;
+    options.validation = def->validation || env_flag("TUMBLE_VALIDATION");
     tb_result r = tb_gpu_create(&w->gpu, &options, &w->diag);
     if (!r) r = tb_memory_init(&w->memory, &w->gpu);
     if (!r) r = tb_pipelines_init(&w->pipelines, &w->gpu, def->pipeline_cache_path);
@@ -78,7 +82,8 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def)
     return r;
 }
 
-tb_result tb_world_create(const tb_world_def* def, tb_world** out)
+tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* extra,
+                               tb_world** out)
 {
     tb_diag early = { .log = def ? def->log : NULL, .log_user = def ? def->log_user : NULL };
     if (!out) return tb_fail(&early, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
@@ -93,7 +98,7 @@ tb_result tb_world_create(const tb_world_def* def, tb_world** out)
     w->max_rotation_per_step = def->max_rotation_per_step;
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
-    r = create_gpu_objects(w, def);
+    r = create_gpu_objects(w, def, extra);
     if (r) {
         tb_diag_set_create_error(w->diag.message);
         tb_world_destroy(w);
@@ -102,6 +107,12 @@ tb_result tb_world_create(const tb_world_def* def, tb_world** out)
     tb_diag_set_create_error("");
     *out = w;
     return TB_OK;
+}
+
+tb_result tb_world_create(const tb_world_def* def, tb_world** out)
+{
+    tb_gpu_options none = { 0 };
+    return tb_world_create_with(def, &none, out);
 }
 
 void tb_world_destroy(tb_world* w)
@@ -148,7 +159,10 @@ tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
 {
     int grew = 0;
     tb_result r = tb_body_store_reserve(&w->store, &w->transfer, slots, &grew);
-    if (grew) tb_graph_invalidate(&w->graph);
+    if (grew) {
+        tb_graph_invalidate(&w->graph);
+        w->buffer_generation++;
+    }
     return r;
 }
 
@@ -166,7 +180,7 @@ static void write_params(tb_world* w, float dt)
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
 }
 
-static tb_result prepare_shapes(tb_world* w)
+tb_result tb_world_prepare_shapes(tb_world* w)
 {
     if (w->shape_slots.used <= w->shape_buffer_capacity) return TB_OK;
     uint32_t cap = w->shape_buffer_capacity * 2;
@@ -203,10 +217,20 @@ tb_result tb_world_fetch(tb_world* w, uint32_t mask)
 {
     if (!(mask & ~w->store.fresh)) return TB_OK;
     const void* landing[TB_ARRAY_COUNT] = { 0 };
-    tb_result r = prepare_shapes(w);
+    tb_result r = tb_world_prepare_shapes(w);
     if (!r) r = record_transfer(w, 0.0f, mask, landing);
     if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
     if (!r) tb_body_store_take_downloads(&w->store, mask, landing);
+    return r;
+}
+
+tb_result tb_world_flush(tb_world* w)
+{
+    if (!w->store.dirty_count && !w->shapes_dirty && w->shape_slots.used <= w->shape_buffer_capacity)
+        return TB_OK;
+    tb_result r = tb_world_prepare_shapes(w);
+    if (!r) r = record_transfer(w, 0.0f, 0, NULL);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
     return r;
 }
 
@@ -228,7 +252,7 @@ tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
                        (double)dt);
     if (n == 0) return TB_OK;
-    tb_result r = prepare_shapes(w);
+    tb_result r = tb_world_prepare_shapes(w);
     if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);
     if (!r) r = record_transfer(w, dt, 0, NULL);
     if (!r) r = submit_steps(w, n);

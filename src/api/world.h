@@ -70,6 +70,7 @@ struct tb_world {
     uint32_t shape_buffer_capacity;
     int shapes_dirty;
 
+    uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
     uint64_t steps, submits;
     double stage_ms[TB_MAX_STAGES];
     double gpu_ms;
@@ -81,6 +82,13 @@ void tb_slots_give(tb_slots* slots, uint32_t slot);
 void tb_slots_free(tb_slots* slots);
 
 /* world.c */
+/// tb_world_create with extra device options (extensions) for Vulkan embedders.
+tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* extra,
+                               tb_world** out);
+/// Upload what the host wrote and the GPU has not seen yet.
+tb_result tb_world_flush(tb_world* w);
+/// Give the GPU shape table room for every shape slot (may replace its buffer).
+tb_result tb_world_prepare_shapes(tb_world* w);
 /// Bring the arrays in `mask` of the body mirror up to date (uploading first what is dirty).
 tb_result tb_world_fetch(tb_world* w, uint32_t mask);
 /// Make room for `slots` body slots on the GPU.

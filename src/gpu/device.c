@@ -64,8 +64,19 @@ static VkDebugUtilsMessengerCreateInfoEXT messenger_info(tb_diag* diag)
     return info;
 }
 
-static tb_result create_instance(tb_gpu* gpu, int validation)
+/* Our extensions (debug utils with validation) followed by the embedder's. */
+static uint32_t instance_extensions(const tb_gpu_options* o, const char** out)
 {
+    uint32_t n = 0;
+    if (o->validation) out[n++] = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    for (uint32_t i = 0; i < o->instance_extension_count && n < TB_MAX_EXTRA_EXTENSIONS + 1; i++)
+        out[n++] = o->instance_extensions[i];
+    return n;
+}
+
+static tb_result create_instance(tb_gpu* gpu, const tb_gpu_options* options)
+{
+    int validation = options->validation;
     if (validation && !layer_available(VALIDATION_LAYER))
         return tb_fail(gpu->diag, TB_ERROR_NO_DEVICE,
                        "validation was asked for but %s is not installed "
@@ -76,7 +87,8 @@ static tb_result create_instance(tb_gpu* gpu, int validation)
         .apiVersion = VK_API_VERSION_1_2,
     };
     const char* layers[] = { VALIDATION_LAYER };
-    const char* extensions[] = { VK_EXT_DEBUG_UTILS_EXTENSION_NAME };
+    const char* extensions[TB_MAX_EXTRA_EXTENSIONS + 1];
+    uint32_t extension_count = instance_extensions(options, extensions);
     VkValidationFeatureEnableEXT enables[] = {
         VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT,
     };
@@ -91,9 +103,12 @@ static tb_result create_instance(tb_gpu* gpu, int validation)
         .pNext = validation ? &features : NULL,
         .pApplicationInfo = &app,
         .enabledLayerCount = validation ? 1 : 0, .ppEnabledLayerNames = layers,
-        .enabledExtensionCount = validation ? 1 : 0, .ppEnabledExtensionNames = extensions,
+        .enabledExtensionCount = extension_count, .ppEnabledExtensionNames = extensions,
     };
     VkResult vr = vkCreateInstance(&info, NULL, &gpu->instance);
+    if (vr == VK_ERROR_EXTENSION_NOT_PRESENT)
+        return tb_fail(gpu->diag, TB_ERROR_NO_DEVICE, "the Vulkan instance lacks an extension "
+                       "asked for");
     if (vr == VK_ERROR_INCOMPATIBLE_DRIVER)
         return tb_fail(gpu->diag, TB_ERROR_NO_DEVICE,
                        "no Vulkan driver found (install mesa-vulkan-drivers for lavapipe)");
@@ -119,6 +134,11 @@ static int compute_queue_family(VkPhysicalDevice pd, uint32_t* family)
     VkQueueFamilyProperties props[16];
     if (count > 16) count = 16;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &count, props);
+    /* A family that also draws lets a renderer share the world's queue; else compute only. */
+    const VkQueueFlags both = VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT;
+    for (uint32_t i = 0; i < count; i++) {
+        if ((props[i].queueFlags & both) == both) { *family = i; return 1; }
+    }
     for (uint32_t i = 0; i < count; i++) {
         if (props[i].queueFlags & VK_QUEUE_COMPUTE_BIT) { *family = i; return 1; }
     }
@@ -237,7 +257,7 @@ static tb_result choose_device(tb_gpu* gpu, const char* choice)
     return TB_OK;
 }
 
-static tb_result create_device(tb_gpu* gpu)
+static tb_result create_device(tb_gpu* gpu, const tb_gpu_options* options)
 {
     float priority = 1.0f;
     VkDeviceQueueCreateInfo queue = {
@@ -247,6 +267,8 @@ static tb_result create_device(tb_gpu* gpu)
     VkDeviceCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
         .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue,
+        .enabledExtensionCount = options->device_extension_count,
+        .ppEnabledExtensionNames = options->device_extensions,
     };
     tb_result r = tb_vk_check(gpu->diag, vkCreateDevice(gpu->physical, &info, NULL, &gpu->device),
                               "vkCreateDevice");
@@ -272,9 +294,12 @@ tb_result tb_gpu_create(tb_gpu* gpu, const tb_gpu_options* options, tb_diag* dia
     const char* choice = options->device;
     if (!choice || !*choice) choice = getenv("TUMBLE_DEVICE");
     if (choice && !*choice) choice = NULL;
-    tb_result r = create_instance(gpu, options->validation);
+    if (options->instance_extension_count > TB_MAX_EXTRA_EXTENSIONS)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "at most %d extra instance extensions",
+                       TB_MAX_EXTRA_EXTENSIONS);
+    tb_result r = create_instance(gpu, options);
     if (!r) r = choose_device(gpu, choice);
-    if (!r) r = create_device(gpu);
+    if (!r) r = create_device(gpu, options);
     if (r) tb_gpu_destroy(gpu);
     return r;
 }

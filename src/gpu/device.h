@@ -11,7 +11,7 @@ typedef struct tb_gpu {
     VkPhysicalDevice physical;
     VkDevice device;
     VkQueue queue;
-    uint32_t queue_family;
+    uint32_t queue_family;          ///< graphics + compute when the device has one
     VkPhysicalDeviceProperties props;
     VkPhysicalDeviceMemoryProperties memory_props;
     char driver[2 * VK_MAX_DRIVER_NAME_SIZE + VK_MAX_DRIVER_INFO_SIZE];
@@ -25,9 +25,16 @@ typedef struct tb_gpu {
     tb_diag* diag;                  ///< where messages go (the world's)
 } tb_gpu;
 
+#define TB_MAX_EXTRA_EXTENSIONS 16
+
 typedef struct tb_gpu_options {
     const char* device;   ///< index or name substring; NULL: TUMBLE_DEVICE, then the best
     int validation;       ///< enable the Khronos validation layer + synchronization checks
+    /// Extensions an embedder needs besides ours (a renderer's surface and swapchain).
+    const char* const* instance_extensions;
+    uint32_t instance_extension_count;
+    const char* const* device_extensions;
+    uint32_t device_extension_count;
 } tb_gpu_options;
 
 tb_result tb_gpu_create(tb_gpu* gpu, const tb_gpu_options* options, tb_diag* diag);
