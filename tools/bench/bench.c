@@ -6,6 +6,7 @@
  * N or S of 0 mean the scene's defaults (`make bench` passes 0 when they are unset).
  * The last line of stdout is always the JSON record, so scripts can take `tail -n 1`.
  */
+#include "render.h"
 #include "scenes.h"
 #include "tumble.h"
 
@@ -15,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <sys/stat.h>
 
 #define STAGE_NAME_MAX 128
 
@@ -27,7 +29,16 @@ typedef struct options {
     const char* device;   /* NULL: the library's choice (TUMBLE_DEVICE, else best GPU) */
     const char* csv_path; /* NULL: no CSV row */
     int json_only;
+    const char* frames;   /* NULL: no pictures; else a folder for frame_NNNNN.png */
+    uint32_t every;       /* with frames: a picture every this many timed steps */
 } options;
+
+/* Pictures of the timed steps. Rendering happens between steps, outside the timings. */
+typedef struct frame_writer {
+    tr_renderer* renderer;  /* NULL: no frames */
+    const char* dir;
+    uint32_t every, written;
+} frame_writer;
 
 /* Per-step samples of the timed steps. Stages are matched by name, not index, so a
  * stage that appears in only some steps still gets a correct median. */
@@ -52,14 +63,17 @@ static void print_usage(FILE* f)
 {
     fprintf(f,
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
-            "             [--device D] [--csv FILE] [--json-only] [--help]\n"
+            "             [--device D] [--csv FILE] [--json-only] [--frames DIR [--every K]]\n"
+            "             [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
             "  --seed        seed of the scene's jitter (default 1)\n"
             "  --device      device index or name substring (default: TUMBLE_DEVICE, else "
             "the best GPU)\n"
             "  --csv         append one result row to FILE (header written if new)\n"
-            "  --json-only   print only the JSON line\n");
+            "  --json-only   print only the JSON line\n"
+            "  --frames      write a PNG of every K-th timed step into DIR (tools/render/video\n"
+            "                makes a video of them); --every defaults to 1\n");
     scene_print_list(f);
 }
 
@@ -92,6 +106,10 @@ static int parse_args(int argc, char** argv, options* o)
             ok = scene_parse_u32(v, &o->warmup);
         } else if (strcmp(a, "--seed") == 0) {
             ok = scene_parse_u32(v, &o->seed);
+        } else if (strcmp(a, "--frames") == 0) {
+            o->frames = v;
+        } else if (strcmp(a, "--every") == 0) {
+            ok = scene_parse_u32(v, &o->every) && o->every > 0;
         } else {
             fprintf(stderr, "bench: unknown option '%s'\n", a);
             print_usage(stderr);
@@ -210,12 +228,32 @@ static int fail(const tb_world* world, const char* call, tb_result r)
     return 1;
 }
 
-static tb_result timed_steps(tb_world* world, float dt, samples* s)
+/* The first frame frames the scene automatically; later ones keep that camera so the
+ * video does not swim. */
+static tb_result write_frame(frame_writer* f)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/frame_%05u.png", f->dir, f->written);
+    tb_result r = tr_render(f->renderer);
+    if (r == TB_OK && f->written == 0) {
+        tr_options ro = tr_default_options();
+        ro.camera = tr_last_camera(f->renderer);
+        ro.camera.automatic = 0;
+        r = tr_set_options(f->renderer, &ro);
+    }
+    if (r == TB_OK) r = tr_write_png(f->renderer, path);
+    if (r != TB_OK) fprintf(stderr, "bench: frame %s: %s\n", path, tr_last_error(f->renderer));
+    f->written++;
+    return r;
+}
+
+static tb_result timed_steps(tb_world* world, float dt, samples* s, frame_writer* frames)
 {
     for (uint32_t i = 0; i < s->steps; i++) {
         double t0 = now_ms();
         tb_result r = tb_world_step(world, dt);
         double t1 = now_ms();
+        if (r == TB_OK && frames->renderer && i % frames->every == 0) r = write_frame(frames);
         if (r != TB_OK) return r;
         tb_world_stats st;
         r = tb_world_get_stats(world, &st);
@@ -371,10 +409,15 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
     r = sc->build(world, &params, &inst);
     if (r != TB_OK) return fail(world, "scene build", r);
     tb_world_stats st;
+    frame_writer frames = { NULL, o->frames, o->every, 0 };
     int code = 0;
-    if (o->warmup && (r = tb_world_step_n(world, sc->dt, o->warmup)) != TB_OK)
+    tr_options ro = tr_default_options();
+    if (o->frames) mkdir(o->frames, 0777); /* an existing folder is fine */
+    if (o->frames && (r = tr_create(world, &ro, &frames.renderer)) != TB_OK)
+        code = fail(world, "tr_create", r);
+    else if (o->warmup && (r = tb_world_step_n(world, sc->dt, o->warmup)) != TB_OK)
         code = fail(world, "tb_world_step_n (warm-up)", r);
-    else if ((r = timed_steps(world, sc->dt, s)) != TB_OK)
+    else if ((r = timed_steps(world, sc->dt, s, &frames)) != TB_OK)
         code = fail(world, "tb_world_step", r);
     else if ((r = sc->check(world, inst, o->warmup + o->steps, sc->dt, checks)) != TB_OK)
         code = fail(world, "scene check", r);
@@ -382,13 +425,14 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
         code = fail(world, "tb_world_get_stats", r);
     else
         *body_count = st.body_count;
+    tr_destroy(frames.renderer);
     sc->destroy(inst);
     return code;
 }
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0 };
+    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0, NULL, 1 };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);

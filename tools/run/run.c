@@ -2,12 +2,16 @@
  * in chunks with a progress line each, then prints speed, stage times, checks and a few
  * bodies' positions.
  *
- *   tumble-run [--scene NAME] [--n N] [--steps S]
+ *   tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window]
  *
+ * --png writes a picture of the final frame (tools/render); --window shows the run live
+ * when Tumble was built with GLFW and a display exists.
  * The device is the library's choice: TUMBLE_DEVICE if set, else the best GPU.
  */
+#include "render.h"
 #include "scenes.h"
 #include "tumble.h"
+#include "tumble_vulkan.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -22,11 +26,13 @@ typedef struct options {
     const char* scene_name; /* NULL: scene_default() */
     uint32_t n;             /* 0: the scene's default */
     uint32_t steps;         /* 0: the scene's default */
+    const char* png;        /* NULL: no picture */
+    int window;             /* show the run in a window */
 } options;
 
 static void print_usage(FILE* f)
 {
-    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S]\n");
+    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window]\n");
     scene_print_list(f);
 }
 
@@ -46,6 +52,11 @@ static int parse_args(int argc, char** argv, options* o)
             ok = ok && scene_parse_u32(v, &o->n);
         } else if (strcmp(a, "--steps") == 0) {
             ok = ok && scene_parse_u32(v, &o->steps);
+        } else if (strcmp(a, "--png") == 0) {
+            o->png = v;
+        } else if (strcmp(a, "--window") == 0) {
+            o->window = 1;
+            continue; /* takes no value */
         } else {
             fprintf(stderr, "tumble-run: unknown option '%s'\n", a);
             print_usage(stderr);
@@ -112,6 +123,61 @@ static int step_in_chunks(tb_world* world, const scene* sc, const tb_body_id* sa
     return 0;
 }
 
+/* The window's frame callback: one step per shown frame, progress every tenth. */
+typedef struct live_run {
+    tb_world* world;
+    const scene* sc;
+    uint32_t steps, done;
+    tb_result result;
+} live_run;
+
+static int live_frame(void* user)
+{
+    live_run* run = user;
+    if (run->done >= run->steps || run->result != TB_OK) return 0;
+    run->result = tb_world_step(run->world, run->sc->dt);
+    run->done++;
+    if (run->done % (run->steps / CHUNKS ? run->steps / CHUNKS : 1) == 0)
+        printf("step %6u  t = %7.3f s\n", run->done, (double)run->done * run->sc->dt);
+    return run->result == TB_OK;
+}
+
+static int step_in_window(tb_world* world, const scene* sc, uint32_t steps, double* wall_s)
+{
+    tr_options ro = tr_default_options();
+    tr_renderer* renderer = NULL;
+    tb_result r = tr_create(world, &ro, &renderer);
+    if (r != TB_OK) return fail(world, "tr_create", r);
+    live_run run = { world, sc, steps, 0, TB_OK };
+    const char* why = "";
+    double t0 = now_s();
+    r = tr_window_run(renderer, world, ro.width, ro.height, "Tumble", live_frame, &run, &why);
+    *wall_s = now_s() - t0;
+    tr_destroy(renderer);
+    if (r != TB_OK) fprintf(stderr, "tumble-run: window: %s\n", why);
+    if (run.result != TB_OK) return fail(world, "tb_world_step", run.result);
+    return r != TB_OK;
+}
+
+/* A picture of the world as it is now, framed automatically. */
+static int write_picture(tb_world* world, const char* path)
+{
+    tr_options ro = tr_default_options();
+    tr_renderer* renderer = NULL;
+    tb_result r = tr_create(world, &ro, &renderer);
+    if (r == TB_OK) r = tr_render(renderer);
+    if (r == TB_OK) r = tr_write_png(renderer, path);
+    if (r != TB_OK) {
+        fprintf(stderr, "tumble-run: picture failed: %s\n",
+                renderer ? tr_last_error(renderer) : tb_world_last_error(world));
+        tr_destroy(renderer);
+        return 1;
+    }
+    tr_destroy(renderer);
+    printf("picture of the final frame: %s\n", path);
+    return 0;
+}
+
 static int print_stats(const tb_world* world)
 {
     tb_world_stats st;
@@ -154,7 +220,8 @@ static int print_bodies(tb_world* world, const tb_body_id* ids, uint32_t count)
 }
 
 /* Everything after world creation. Returns the exit code. */
-static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t steps)
+static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t steps,
+                     const options* o)
 {
     scene_params params = { n, 1 };
     scene_instance* inst = NULL;
@@ -165,7 +232,8 @@ static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t step
     printf("scene %s: %u bodies, %u steps of %.5f s\n", sc->name, count, steps, sc->dt);
 
     double wall_s = 0.0;
-    int code = step_in_chunks(world, sc, count ? ids : NULL, steps, &wall_s);
+    int code = o->window ? step_in_window(world, sc, steps, &wall_s)
+                         : step_in_chunks(world, sc, count ? ids : NULL, steps, &wall_s);
     if (!code) {
         printf("%.1f steps/s (%.3f s wall for %u steps)\n",
                wall_s > 0.0 ? steps / wall_s : 0.0, wall_s, steps);
@@ -173,13 +241,30 @@ static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t step
     }
     if (!code) code = print_checks(world, sc, inst, steps);
     if (!code) code = print_bodies(world, ids, count);
+    if (!code && o->png) code = write_picture(world, o->png);
     sc->destroy(inst);
     return code;
 }
 
+/* A window needs its surface and swapchain extensions on the world's instance and device.
+ * Returns the exit code. */
+static int create_world(const tb_world_def* def, int window, tb_world** out)
+{
+    tr_window_extensions wext;
+    memset(&wext, 0, sizeof wext);
+    const char* why = "";
+    if (window && tr_window_prepare(&wext, &why) != TB_OK) {
+        fprintf(stderr, "tumble-run: --window: %s\n", why);
+        return 1;
+    }
+    tb_vulkan_extensions ext = { wext.instance, wext.instance_count, wext.device, wext.device_count };
+    tb_result r = window ? tb_world_create_vulkan(def, &ext, out) : tb_world_create(def, out);
+    return r != TB_OK ? fail(NULL, "tb_world_create", r) : 0;
+}
+
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0 };
+    options o = { NULL, 0, 0, NULL, 0 };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = o.scene_name ? scene_find(o.scene_name) : scene_default();
@@ -194,10 +279,10 @@ int main(int argc, char** argv)
     tb_world_def def = tb_default_world_def();
     def.initial_body_capacity = n <= UINT32_MAX - 16 ? n + 16 : n; /* no growth mid-run */
     tb_world* world = NULL;
-    tb_result r = tb_world_create(&def, &world);
-    if (r != TB_OK) return fail(NULL, "tb_world_create", r);
+    code = create_world(&def, o.window, &world);
+    if (code) return code;
     code = print_device(world);
-    if (!code) code = run_scene(world, sc, n, steps);
+    if (!code) code = run_scene(world, sc, n, steps, &o);
     tb_world_destroy(world);
     return code;
 }

@@ -1,0 +1,338 @@
+/* tools/render: the public tr_ calls. A frame is one command buffer on the world's queue:
+ * a barrier after the world's compute writes, one render pass (planes, then instanced
+ * spheres and boxes, then AABB lines), a copy of the colour image into a host-visible
+ * buffer, and a wait on our own fence. Bodies are never looped over on the host, except
+ * to read AABBs for the automatic camera and to know whether a plane exists. */
+#include <math.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "layout.h"
+#include "render_internal.h"
+
+/* Why the last tr_create failed (there is no renderer to hold it): tr_last_error(NULL). */
+static char create_error[256];
+
+tb_result tr_fail(tr_renderer* r, tb_result code, const char* fmt, ...)
+{
+    va_list args;
+    va_start(args, fmt);
+    vsnprintf(r->error, sizeof r->error, fmt, args);
+    va_end(args);
+    return code;
+}
+
+tb_result tr_vk(tr_renderer* r, VkResult vr, const char* what)
+{
+    if (vr == VK_SUCCESS) return TB_OK;
+    if (vr == VK_ERROR_OUT_OF_HOST_MEMORY || vr == VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "%s: out of memory (VkResult %d)", what, vr);
+    return tr_fail(r, TB_ERROR_DEVICE, "%s failed (VkResult %d)", what, vr);
+}
+
+tr_options tr_default_options(void)
+{
+    tr_options o = {
+        .width = 960, .height = 540,
+        .camera = { .eye = { 10, 8, 14 }, .target = { 0, 0, 0 }, .up = { 0, 1, 0 },
+                    .fov_y_degrees = 45.0f, .automatic = 1 },
+        .color = TR_COLOR_BY_ID, .speed_scale = 10.0f, .show_aabbs = 0, .show_grid = 1,
+    };
+    return o;
+}
+
+static tb_result check_options(tr_renderer* r, const tr_options* o)
+{
+    if (o->width == 0 || o->height == 0 || o->width > r->max_image_size ||
+        o->height > r->max_image_size)
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "image size %ux%u is outside 1..%u",
+                       o->width, o->height, r->max_image_size);
+    if ((unsigned)o->color > TR_COLOR_BY_SHAPE)
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "unknown colour mode %d", (int)o->color);
+    if (!(o->speed_scale > 0.0f) || !isfinite(o->speed_scale))
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "speed_scale must be finite and > 0");
+    if (!tr_camera_valid(&o->camera))
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "bad camera: fov must be in (1, 179) "
+                       "degrees and, unless automatic, eye apart from target with up not "
+                       "along the view direction");
+    return TB_OK;
+}
+
+static tb_result create_objects(tr_renderer* r, const tr_options* options)
+{
+    tb_result res = tb_world_vulkan_device(r->world, &r->dev);
+    if (res) return tr_fail(r, res, "tb_world_vulkan_device failed");
+    if (!r->dev.has_graphics)
+        return tr_fail(r, TB_ERROR_NO_DEVICE, "the world's queue cannot draw (a compute-only "
+                       "queue family); the renderer needs a graphics-capable one");
+    res = tr_gpu_init(r);
+    if (!res) res = check_options(r, options);
+    if (res) return res;
+    r->options = *options;
+    res = tr_targets_create(r);
+    if (!res) res = tr_meshes_create(r);
+    if (!res) res = tr_pipelines_create(r);
+    return res;
+}
+
+tb_result tr_create(tb_world* world, const tr_options* options, tr_renderer** out)
+{
+    if (out) *out = NULL;
+    if (!world || !out) {
+        snprintf(create_error, sizeof create_error, "tr_create needs a world and an output");
+        return TB_ERROR_INVALID_ARGUMENT;
+    }
+    tr_renderer* r = calloc(1, sizeof *r);
+    if (!r) {
+        snprintf(create_error, sizeof create_error, "no host memory for a renderer");
+        return TB_ERROR_OUT_OF_MEMORY;
+    }
+    r->world = world;
+    tr_options defaults = tr_default_options();
+    tb_result res = create_objects(r, options ? options : &defaults);
+    if (res) {
+        snprintf(create_error, sizeof create_error, "%s", r->error);
+        tr_destroy(r);
+        return res;
+    }
+    create_error[0] = '\0';
+    *out = r;
+    return TB_OK;
+}
+
+void tr_destroy(tr_renderer* r)
+{
+    if (!r) return;
+    /* Every frame waits for its fence before returning, so nothing is in flight here. */
+    if (r->dev.device) {
+        tr_pipelines_destroy(r);
+        tr_gpu_destroy(r);
+    }
+    free(r);
+}
+
+tb_result tr_set_options(tr_renderer* r, const tr_options* options)
+{
+    if (!r || !options) return TB_ERROR_INVALID_ARGUMENT;
+    tb_result res = check_options(r, options);
+    if (res) return res;
+    int resize = options->width != r->options.width || options->height != r->options.height;
+    tr_options old = r->options;
+    r->options = *options;
+    if (!resize) return TB_OK;
+    tr_targets_destroy(r);
+    res = tr_targets_create(r);
+    if (!res) return TB_OK;
+    /* Keep the renderer usable at its old size; report the failure. */
+    char why[sizeof r->error];
+    memcpy(why, r->error, sizeof why);
+    tr_targets_destroy(r);
+    r->options = old;
+    if (tr_targets_create(r)) tr_targets_destroy(r);
+    memcpy(r->error, why, sizeof why);
+    return res;
+}
+
+static void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src, VkAccessFlags src_access,
+                           VkPipelineStageFlags dst, VkAccessFlags dst_access)
+{
+    VkMemoryBarrier barrier = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+        .srcAccessMask = src_access, .dstAccessMask = dst_access,
+    };
+    vkCmdPipelineBarrier(cb, src, dst, 0, 1, &barrier, 0, NULL, 0, NULL);
+}
+
+static void fill_push(const tr_renderer* r, const tr_view* v, tr_push* p)
+{
+    memset(p, 0, sizeof *p);
+    memcpy(p->view_proj, v->view_proj, sizeof p->view_proj);
+    const tr_camera* c = &v->camera;
+    p->eye[0] = c->eye.x; p->eye[1] = c->eye.y; p->eye[2] = c->eye.z;
+    p->eye[3] = (float)v->far_plane;
+    p->target[0] = c->target.x; p->target[1] = c->target.y; p->target[2] = c->target.z;
+    p->target[3] = r->options.speed_scale;
+    /* Towards the light: above, a little to +x and +z. */
+    const double light[3] = { 0.45, 1.0, 0.3 };
+    double len = sqrt(light[0] * light[0] + light[1] * light[1] + light[2] * light[2]);
+    for (int i = 0; i < 3; i++) p->light[i] = (float)(light[i] / len);
+    p->light[3] = (float)v->floor_y;
+    p->mode[1] = (uint32_t)r->options.color;
+    p->mode[2] = r->options.show_grid ? TR_FLAG_GRID : 0;
+}
+
+static void push(const tr_renderer* r, const tr_push* p)
+{
+    vkCmdPushConstants(r->cb, r->pipeline_layout,
+                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                       sizeof *p, p);
+}
+
+static void draw_mesh(const tr_renderer* r, tr_push* p, uint32_t type, const tr_mesh* m,
+                      uint32_t slots)
+{
+    p->mode[0] = type;
+    push(r, p);
+    vkCmdDrawIndexed(r->cb, m->index_count, slots, m->first_index, m->vertex_offset, 0);
+}
+
+/* Everything inside the render pass. Planes go first: they fade out by blending over the
+ * clear colour. Each draw covers every body slot; the shaders hide what is not theirs. */
+static void record_draws(const tr_renderer* r, const tr_view* v, uint32_t slots,
+                         int default_plane)
+{
+    VkCommandBuffer cb = r->cb;
+    VkViewport viewport = { 0, 0, (float)r->options.width, (float)r->options.height, 0, 1 };
+    VkRect2D scissor = { { 0, 0 }, { r->options.width, r->options.height } };
+    vkCmdSetViewport(cb, 0, 1, &viewport);
+    vkCmdSetScissor(cb, 0, 1, &scissor);
+    vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->pipeline_layout, 0, 1,
+                            &r->set, 0, NULL);
+    tr_push p;
+    fill_push(r, v, &p);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->plane_pipeline);
+    if (slots) {
+        push(r, &p);
+        vkCmdDraw(cb, 6, slots, 0, 0);
+    }
+    if (default_plane) {
+        tr_push d = p;
+        d.mode[2] |= TR_FLAG_DEFAULT_PLANE;
+        push(r, &d);
+        vkCmdDraw(cb, 6, 1, 0, 0);
+    }
+    if (!slots) return;
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->mesh_pipeline);
+    VkDeviceSize zero = 0;
+    vkCmdBindVertexBuffers(cb, 0, 1, &r->vertices.buffer, &zero);
+    vkCmdBindIndexBuffer(cb, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    draw_mesh(r, &p, TB_GPU_SHAPE_SPHERE, &r->sphere, slots);
+    draw_mesh(r, &p, TB_GPU_SHAPE_BOX, &r->cube, slots);
+    if (r->options.show_aabbs) {
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->line_pipeline);
+        push(r, &p);
+        vkCmdDraw(cb, 24, slots, 0, 0);
+    }
+}
+
+static tb_result record(tr_renderer* r, const tr_view* v, uint32_t slots, int default_plane)
+{
+    VkCommandBuffer cb = r->cb;
+    VkCommandBufferBeginInfo begin = {
+        .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
+        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT,
+    };
+    tb_result res = tr_vk(r, vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
+    if (res) return res;
+    /* The world's compute and transfer writes before our reads; and the last frame's copy
+     * into the read-back buffer before this frame's. */
+    memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_INPUT_BIT |
+                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT |
+                   VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+                   VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkClearValue clears[2] = {
+        { .color = { { TR_SKY_R / 255.0f, TR_SKY_G / 255.0f, TR_SKY_B / 255.0f, 1.0f } } },
+        { .depthStencil = { 1.0f, 0 } },
+    };
+    VkRenderPassBeginInfo pass = {
+        .sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO,
+        .renderPass = r->render_pass, .framebuffer = r->framebuffer,
+        .renderArea = { { 0, 0 }, { r->options.width, r->options.height } },
+        .clearValueCount = 2, .pClearValues = clears,
+    };
+    vkCmdBeginRenderPass(cb, &pass, VK_SUBPASS_CONTENTS_INLINE);
+    record_draws(r, v, slots, default_plane);
+    vkCmdEndRenderPass(cb);
+    /* The render pass left the image in TRANSFER_SRC_OPTIMAL, its dependency ordering the
+     * colour writes before this copy; rows come out top first, tightly packed. */
+    VkBufferImageCopy region = {
+        .imageSubresource = { VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1 },
+        .imageExtent = { r->options.width, r->options.height, 1 },
+    };
+    vkCmdCopyImageToBuffer(cb, r->color.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                           r->readback.buffer, 1, &region);
+    memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    /* The world's next step overwrites what the vertex shaders read: make it wait. */
+    memory_barrier(cb, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
+    return tr_vk(r, vkEndCommandBuffer(cb), "vkEndCommandBuffer");
+}
+
+static tb_result submit_and_wait(tr_renderer* r)
+{
+    VkSubmitInfo submit = {
+        .sType = VK_STRUCTURE_TYPE_SUBMIT_INFO, .commandBufferCount = 1, .pCommandBuffers = &r->cb,
+    };
+    VkDevice d = r->dev.device;
+    tb_result res = tr_vk(r, vkQueueSubmit(r->dev.queue, 1, &submit, r->fence), "vkQueueSubmit");
+    if (res) return res;
+    res = tr_vk(r, vkWaitForFences(d, 1, &r->fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    if (res) return res;
+    return tr_vk(r, vkResetFences(d, 1, &r->fence), "vkResetFences");
+}
+
+tb_result tr_render(tr_renderer* r)
+{
+    if (!r) return TB_ERROR_INVALID_ARGUMENT;
+    if (!r->framebuffer)
+        return tr_fail(r, TB_ERROR_DEVICE, "the renderer has no images (a resize failed)");
+    tb_vulkan_bodies bodies;
+    tb_result res = tb_world_vulkan_bodies(r->world, &bodies);
+    if (res) return tr_fail(r, res, "tb_world_vulkan_bodies: %s", tb_world_last_error(r->world));
+    res = tr_bind_bodies(r, &bodies);
+    if (res) return res;
+    tr_scene scene = { 0 };
+    if (r->options.camera.automatic || r->options.show_grid) res = tr_scene_scan(r, &scene);
+    if (res) return res;
+    tr_view view;
+    tr_view_resolve(&r->options, &scene, &view);
+    res = record(r, &view, bodies.slots, r->options.show_grid && !scene.has_plane);
+    if (!res) res = submit_and_wait(r);
+    if (res) return res;
+    r->last_camera = view.camera;
+    r->has_frame = 1;
+    return TB_OK;
+}
+
+tb_result tr_read_pixels(tr_renderer* r, uint8_t* rgba)
+{
+    if (!r || !rgba) return TB_ERROR_INVALID_ARGUMENT;
+    if (!r->has_frame)
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "no frame yet: call tr_render first");
+    memcpy(rgba, r->readback.mapped, (size_t)r->options.width * r->options.height * 4);
+    return TB_OK;
+}
+
+tb_result tr_write_png(tr_renderer* r, const char* path)
+{
+    if (!r || !path) return TB_ERROR_INVALID_ARGUMENT;
+    if (!r->has_frame)
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "no frame yet: call tr_render first");
+    png_image image;
+    memset(&image, 0, sizeof image);
+    image.version = PNG_IMAGE_VERSION;
+    image.width = r->options.width;
+    image.height = r->options.height;
+    image.format = PNG_FORMAT_RGBA;
+    if (!png_image_write_to_file(&image, path, 0, r->readback.mapped,
+                                 (png_int_32)(r->options.width * 4), NULL))
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "writing %s failed: %s", path,
+                       image.message);
+    return TB_OK;
+}
+
+tr_camera tr_last_camera(const tr_renderer* r)
+{
+    return r ? r->last_camera : tr_default_options().camera;
+}
+
+const char* tr_last_error(const tr_renderer* r)
+{
+    return r ? r->error : create_error;
+}

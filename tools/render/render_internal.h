@@ -1,0 +1,122 @@
+/* tools/render internals shared by its .c files (prefix tr_ as well, never exported). */
+#ifndef TUMBLE_RENDER_INTERNAL_H
+#define TUMBLE_RENDER_INTERNAL_H
+
+#include <stdarg.h>
+
+#include "render.h"
+#include "tumble_vulkan.h"
+
+/* The clear colour, in exact 8-bit steps so that a cleared pixel reads back exactly. */
+#define TR_SKY_R 204
+#define TR_SKY_G 219
+#define TR_SKY_B 235
+
+#include "render_layout.h" /* tr_push and TR_FLAG_*, shared with the shaders */
+
+typedef struct tr_image {
+    VkImage image;
+    VkDeviceMemory memory;
+    VkImageView view;
+} tr_image;
+
+typedef struct tr_buffer {
+    VkBuffer buffer;
+    VkDeviceMemory memory;
+    void* mapped;         /* host-visible buffers stay mapped */
+} tr_buffer;
+
+/* A mesh inside the shared vertex and index buffers. */
+typedef struct tr_mesh {
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+} tr_mesh;
+
+/* A vertex of the unit meshes. */
+typedef struct tr_vertex { float position[3], normal[3]; } tr_vertex;
+
+/* What the host knows of the scene for one frame. */
+typedef struct tr_scene {
+    int has_plane;            /* a live body with an unbounded AABB */
+    int has_bounds;           /* at least one finite AABB */
+    double lo[3], hi[3];      /* bounding box of the finite AABBs */
+} tr_scene;
+
+/* A camera resolved to matrices. */
+typedef struct tr_view {
+    tr_camera camera;
+    double near_plane, far_plane;
+    double floor_y;       /* height of the default grid: the scene's lowest point, else 0 */
+    float view_proj[16];
+} tr_view;
+
+struct tr_renderer {
+    tb_world* world;
+    tb_vulkan_device dev;
+    tr_options options;
+    VkPhysicalDeviceMemoryProperties memory_properties;
+    VkFormat depth_format;
+    uint32_t max_image_size;
+
+    VkCommandPool command_pool;
+    VkCommandBuffer cb;
+    VkFence fence;
+    VkRenderPass render_pass;
+
+    /* Size-dependent: re-created by tr_set_options. */
+    tr_image color, depth;
+    VkFramebuffer framebuffer;
+    tr_buffer readback;
+
+    tr_buffer vertices, indices;
+    tr_mesh sphere, cube;
+
+    VkDescriptorSetLayout set_layout;
+    VkDescriptorPool descriptor_pool;
+    VkDescriptorSet set;
+    int set_written;
+    uint64_t set_generation;
+
+    VkPipelineLayout pipeline_layout;
+    VkPipeline mesh_pipeline, plane_pipeline, line_pipeline;
+
+    tr_camera last_camera;
+    int has_frame;
+    char error[256];
+};
+
+/* render.c */
+tb_result tr_fail(tr_renderer* r, tb_result code, const char* fmt, ...);
+tb_result tr_vk(tr_renderer* r, VkResult vr, const char* what);
+
+/* render_gpu.c: memory, images, buffers, render pass */
+tb_result tr_gpu_init(tr_renderer* r);
+tb_result tr_targets_create(tr_renderer* r);
+void tr_targets_destroy(tr_renderer* r);
+tb_result tr_host_buffer(tr_renderer* r, VkDeviceSize size, VkBufferUsageFlags usage,
+                         tr_buffer* out);
+void tr_buffer_destroy(tr_renderer* r, tr_buffer* b);
+tb_result tr_meshes_create(tr_renderer* r);
+void tr_gpu_destroy(tr_renderer* r);
+
+/* render_mesh.c: unit meshes */
+uint32_t tr_sphere_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_count);
+uint32_t tr_cube_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_count);
+#define TR_SPHERE_SLICES 24
+#define TR_SPHERE_STACKS 16
+#define TR_SPHERE_VERTICES ((TR_SPHERE_SLICES + 1) * (TR_SPHERE_STACKS + 1))
+#define TR_SPHERE_INDICES (TR_SPHERE_SLICES * TR_SPHERE_STACKS * 6)
+#define TR_CUBE_VERTICES 24
+#define TR_CUBE_INDICES 36
+
+/* render_pipelines.c: descriptor set and the three pipelines */
+tb_result tr_pipelines_create(tr_renderer* r);
+tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* bodies);
+void tr_pipelines_destroy(tr_renderer* r);
+
+/* render_camera.c: scene bounds and camera matrices */
+tb_result tr_scene_scan(tr_renderer* r, tr_scene* out);
+void tr_view_resolve(const tr_options* o, const tr_scene* scene, tr_view* out);
+int tr_camera_valid(const tr_camera* c);
+
+#endif

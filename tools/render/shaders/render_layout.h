@@ -1,0 +1,34 @@
+/* The renderer's push constants and flags, included by its C files and its shaders, so the
+ * two sides cannot drift (the world's own layouts are in glsl/common/layout.h). */
+#ifndef TUMBLE_RENDER_LAYOUT_H
+#define TUMBLE_RENDER_LAYOUT_H
+
+#if defined(__STDC__) || defined(__cplusplus)
+#include <stdint.h>
+#define TR_MAT4(name) float name[16]
+#define TR_VEC4(name) float name[4]
+#define TR_UVEC4(name) uint32_t name[4]
+#define TR_STRUCT(name) typedef struct name name; struct name
+#define TR_U(x) x##u
+#else
+#define TR_MAT4(name) mat4 name
+#define TR_VEC4(name) vec4 name
+#define TR_UVEC4(name) uvec4 name
+#define TR_STRUCT(name) struct name
+#define TR_U(x) uint(x)
+#endif
+
+/* mode.z */
+#define TR_FLAG_GRID          TR_U(1)  /* draw grid lines on planes */
+#define TR_FLAG_DEFAULT_PLANE TR_U(2)  /* one horizontal grid under the scene, not a body */
+
+/* 128 bytes, the least every device allows; the same block in every stage. */
+TR_STRUCT(tr_push) {
+    TR_MAT4(view_proj);   /* column-major, Vulkan clip space */
+    TR_VEC4(eye);         /* xyz camera position, w far plane distance */
+    TR_VEC4(target);      /* xyz point looked at, w speed that maps to full red */
+    TR_VEC4(light);       /* xyz unit direction towards the light, w height of the default grid */
+    TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_*, w reserved */
+};
+
+#endif
