@@ -1,6 +1,4 @@
 /* The Vulkan interop calls of include/tumble_vulkan.h. */
-#include <string.h>
-
 #include "api/world.h"
 #include "tumble_vulkan.h"
 
@@ -20,15 +18,10 @@ tb_result tb_world_create_vulkan(const tb_world_def* def, const tb_vulkan_extens
 tb_result tb_world_vulkan_device(const tb_world* w, tb_vulkan_device* out)
 {
     if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
-    uint32_t count = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(w->gpu.physical, &count, NULL);
-    VkQueueFamilyProperties families[16];
-    if (count > 16) count = 16;
-    vkGetPhysicalDeviceQueueFamilyProperties(w->gpu.physical, &count, families);
     *out = (tb_vulkan_device){
         .instance = w->gpu.instance, .physical_device = w->gpu.physical,
         .device = w->gpu.device, .queue = w->gpu.queue, .queue_family = w->gpu.queue_family,
-        .has_graphics = (families[w->gpu.queue_family].queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0,
+        .has_graphics = (w->gpu.queue_flags & VK_QUEUE_GRAPHICS_BIT) != 0,
     };
     return TB_OK;
 }

@@ -240,6 +240,7 @@ static void read_device_facts(tb_gpu* gpu)
     if (count > 16) count = 16;
     vkGetPhysicalDeviceQueueFamilyProperties(gpu->physical, &count, families);
     gpu->timestamp_valid_bits = families[gpu->queue_family].timestampValidBits;
+    gpu->queue_flags = families[gpu->queue_family].queueFlags;
 }
 
 static tb_result choose_device(tb_gpu* gpu, const char* choice)

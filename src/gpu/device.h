@@ -12,6 +12,7 @@ typedef struct tb_gpu {
     VkDevice device;
     VkQueue queue;
     uint32_t queue_family;          ///< graphics + compute when the device has one
+    VkQueueFlags queue_flags;       ///< what that family can do
     VkPhysicalDeviceProperties props;
     VkPhysicalDeviceMemoryProperties memory_props;
     char driver[2 * VK_MAX_DRIVER_NAME_SIZE + VK_MAX_DRIVER_INFO_SIZE];
