@@ -22,7 +22,9 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 64);
+    assert_int_equal(sizeof(tb_gpu_params), 96);
+    assert_int_equal(offsetof(tb_gpu_params, capacity), 64);
+    assert_int_equal(offsetof(tb_gpu_params, contact), 80);
     assert_int_equal(offsetof(tb_gpu_params, gravity), 0);
     assert_int_equal(offsetof(tb_gpu_params, counts), 16);
     assert_int_equal(offsetof(tb_gpu_params, limits), 32);
@@ -37,11 +39,12 @@ static void test_params_layout(void** state)
 static void test_shape_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_shape), 64);
+    assert_int_equal(sizeof(tb_gpu_shape), 80);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_center), 0);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_half), 16);
     assert_int_equal(offsetof(tb_gpu_shape, params), 32);
     assert_int_equal(offsetof(tb_gpu_shape, info), 48);
+    assert_int_equal(offsetof(tb_gpu_shape, material), 64);
     /* std430 array stride of the struct is its size rounded to 16. */
     assert_int_equal(sizeof(tb_gpu_shape) % 16, 0);
 }
@@ -61,7 +64,11 @@ static void test_bindings_distinct(void** state)
     (void)state;
     const int b[] = { TB_BIND_PARAMS, TB_BIND_BODY_POS, TB_BIND_BODY_ROT, TB_BIND_BODY_LINVEL,
                       TB_BIND_BODY_ANGVEL, TB_BIND_BODY_INV_INERTIA, TB_BIND_BODY_INFO,
-                      TB_BIND_BODY_AABB_MIN, TB_BIND_BODY_AABB_MAX, TB_BIND_SHAPES };
+                      TB_BIND_BODY_AABB_MIN, TB_BIND_BODY_AABB_MAX, TB_BIND_SHAPES,
+                      TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS, TB_BIND_BODY_PUSH, TB_BIND_BODY_CLAIM,
+                      TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
+                      TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
+                      TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);
@@ -69,6 +76,22 @@ static void test_bindings_distinct(void** state)
     }
     /* TB_BIND_COUNT sizes the descriptor set layout: no unused holes expected. */
     assert_int_equal(n, TB_BIND_COUNT);
+}
+
+static void test_contact_layout(void** state)
+{
+    (void)state;
+    /* Indirect dispatch arguments sit where the recorded vkCmdDispatchIndirect reads them. */
+    assert_int_equal(offsetof(tb_gpu_counters, pair_dispatch), TB_COUNTERS_PAIR_DISPATCH_OFFSET);
+    assert_int_equal(offsetof(tb_gpu_counters, colour_dispatch), TB_COUNTERS_COLOUR_DISPATCH_OFFSET);
+    assert_int_equal(sizeof(tb_gpu_counters) % 16, 0);
+    assert_int_equal(sizeof(tb_gpu_manifold), 16 * (3 + 2 * TB_MAX_MANIFOLD_POINTS));
+    assert_int_equal(offsetof(tb_gpu_manifold, point), 32);
+    assert_int_equal(offsetof(tb_gpu_manifold, impulse), 32 + 16 * TB_MAX_MANIFOLD_POINTS);
+    assert_int_equal(sizeof(tb_gpu_constraint), 32 + 48 * TB_MAX_MANIFOLD_POINTS);
+    assert_int_equal(sizeof(tb_gpu_push), 16);
+    /* Claims hold the round above the index bits; the pair capacity fits the index bits. */
+    assert_true(TB_MAX_COLOURS <= (1 << (32 - TB_COLOUR_INDEX_BITS)));
 }
 
 static void test_stage_ids(void** state)
@@ -119,6 +142,7 @@ int main(void)
         cmocka_unit_test(test_shape_layout),
         cmocka_unit_test(test_shape_type_values),
         cmocka_unit_test(test_bindings_distinct),
+        cmocka_unit_test(test_contact_layout),
         cmocka_unit_test(test_stage_ids),
         cmocka_unit_test(test_misc_constants),
         cmocka_unit_test(test_public_abi_sizes),

@@ -38,11 +38,43 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BODY_AABB_MIN   7  /* vec4[]: world AABB minimum corner, w unused */
 #define TB_BIND_BODY_AABB_MAX   8  /* vec4[]: world AABB maximum corner, w unused */
 #define TB_BIND_SHAPES          9  /* tb_gpu_shape[] */
-#define TB_BIND_COUNT           10
+#define TB_BIND_COUNTERS        10 /* tb_gpu_counters: counts only the GPU knows, flags, indirect args */
+/* Per body slot, GPU-only (sized by the body capacity): */
+#define TB_BIND_BODY_PAIRS      11 /* uvec4[]: owned pairs, x offset y count (even steps), z offset w count (odd) */
+#define TB_BIND_BODY_PUSH       12 /* vec4[2 * cap]: split-impulse pseudo velocity, [2i] linear, [2i+1] angular */
+#define TB_BIND_BODY_CLAIM      13 /* uint[]: graph colouring claim of each body */
+#define TB_BIND_BODY_PAIR_COUNT 14 /* uint[]: pairs each body owns this step; scanned in place to offsets */
+/* Broadphase grid (sized by the body capacity): */
+#define TB_BIND_GRID_KEYS       15 /* uint[]: cell hash of each entry, sorted ascending */
+#define TB_BIND_GRID_BODIES     16 /* uint[]: body of each entry, sorted with the keys */
+#define TB_BIND_GRID_TABLE      17 /* uvec2[]: per hash bucket, [start, end) into the sorted entries */
+#define TB_BIND_LARGE_FLAGS     18 /* uint[]: 1 for a static body too large for the grid */
+#define TB_BIND_LARGE_LIST      19 /* uint[]: bodies flagged large, in slot order */
+/* Pairs and contacts (sized by the pair capacity; the two halves alternate by step parity): */
+#define TB_BIND_PAIRS           20 /* uvec4[2 * pair cap]: x body a (owner), y body b, z colour, w unused */
+#define TB_BIND_MANIFOLDS       21 /* tb_gpu_manifold[2 * pair cap] */
+#define TB_BIND_CONSTRAINTS     22 /* tb_gpu_constraint[pair cap]: solver data of this step */
+#define TB_BIND_COLOUR_LIST     23 /* uint[pair cap]: pair indices (within the half) grouped by colour */
+#define TB_BIND_COUNT           24
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
 #define TB_SPEC_SUBGROUP_SIZE   1  /* the device's subgroup size: 8 lavapipe, 32 NVIDIA, 64 AMD */
+
+/* Reasons the GPU abandoned a step (tb_gpu_counters.state.x). A stage that sees any flag
+ * does nothing, so the bodies keep the state they had before the step; the host grows
+ * what overflowed and runs the step again. */
+#define TB_ABORT_PAIRS          TB_U(1)   /* more pairs than the pair capacity */
+#define TB_ABORT_COLOURS        TB_U(2)   /* constraints left uncoloured after every colouring round */
+
+/* Graph colouring: at most this many colours (rounds). Claims pack the round into the top
+ * bits and a permutation of the constraint index into the low TB_COLOUR_INDEX_BITS. */
+#define TB_MAX_COLOURS          64
+#define TB_COLOUR_INDEX_BITS    26
+#define TB_MAX_PAIR_CAPACITY    (TB_U(1) << TB_COLOUR_INDEX_BITS)
+#define TB_NO_COLOUR            TB_U(0xffffffff)
+
+#define TB_MAX_MANIFOLD_POINTS  4
 
 /* Stage ids: the order of the step. Names in src/gpu/stages.c match the shader paths. */
 #define TB_STAGE_APPLY_FORCES   0  /* integrate/apply_forces: gravity and damping -> velocity */
@@ -71,8 +103,58 @@ TB_STRUCT(tb_gpu_params) {
     TB_UVEC4 counts;        /* x body slots in use (high-water mark), y shape count, z w reserved */
     TB_VEC4 limits;         /* x largest rotation per step (rad), y z w reserved */
     TB_UVEC4 body_dispatch; /* xyz: VkDispatchIndirectCommand covering counts.x bodies; w reserved */
+    TB_UVEC4 capacity;      /* x pair capacity (one half), y grid table mask (size - 1),
+                               z colouring rounds recorded, w solver iterations */
+    TB_VEC4 contact;        /* x contact margin (m), y restitution threshold (m/s),
+                               z penetration slop (m), w split-impulse recovery rate (1/step) */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
+
+/* Counts only the GPU knows. Reset by the step's first stage, except state.x (abort flags,
+ * cleared by the host before a submission) and state.y (steps completed). */
+TB_STRUCT(tb_gpu_counters) {
+    TB_UVEC4 pair_dispatch;   /* xyz: VkDispatchIndirectCommand over this step's pairs */
+    TB_UVEC4 state;           /* x TB_ABORT_* flags, y steps completed on the GPU (parity = y & 1),
+                                 z pairs this step, w pairs needed (valid after an overflow) */
+    TB_UVEC4 grid;            /* x largest dynamic AABB extent (float bits), y large bodies,
+                                 z entries sorted (body slots), w unused */
+    TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured, z batches
+                                 (subgroup-wide), w contact points */
+    TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
+                                                 colour list, z placed so far, w unused */
+    TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */
+};
+#define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
+#define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (64 + 16 * TB_MAX_COLOURS)
+
+/* Push constants of the world's stages that take them (the solver's colour and iteration). */
+TB_STRUCT(tb_gpu_push) {
+    TB_UVEC4 args;            /* x colour (or round), y iteration, z flags, w unused */
+};
+
+/* Contact manifold of one pair: up to four points sharing a normal. */
+TB_STRUCT(tb_gpu_manifold) {
+    TB_VEC4 normal;           /* xyz unit normal pointing from body a to body b, w friction */
+    TB_UVEC4 info;            /* x point count, y body a, z body b, w restitution (float bits) */
+    TB_VEC4 point[TB_MAX_MANIFOLD_POINTS];    /* xyz world point midway between the surfaces,
+                                                 w separation (m, negative when penetrating) */
+    TB_VEC4 impulse[TB_MAX_MANIFOLD_POINTS];  /* accumulated: x normal, y tangent 1, z tangent 2,
+                                                 w split (position) impulse; N s */
+    TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
+};
+
+/* Solver data of one contact point, prepared once per step. */
+TB_STRUCT(tb_gpu_constraint_point) {
+    TB_VEC4 ra;               /* xyz point relative to a's centre, w normal effective mass */
+    TB_VEC4 rb;               /* xyz point relative to b's centre, w normal velocity target */
+    TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z split velocity target, w unused */
+};
+
+TB_STRUCT(tb_gpu_constraint) {
+    TB_VEC4 tangent1;         /* xyz first friction direction, w friction coefficient */
+    TB_VEC4 tangent2;         /* xyz second friction direction, w restitution */
+    tb_gpu_constraint_point p[TB_MAX_MANIFOLD_POINTS];
+};
 
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {
@@ -80,6 +162,7 @@ TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_half;      /* xyz half extents of the local AABB */
     TB_VEC4 params;         /* sphere: x radius; box: xyz half extents; plane: xyz normal, w offset */
     TB_UVEC4 info;          /* x TB_GPU_SHAPE_*, y z w reserved */
+    TB_VEC4 material;       /* x friction coefficient, y restitution, z w reserved */
 };
 
 #endif

@@ -161,7 +161,13 @@ static int usable(VkPhysicalDevice pd)
     VkPhysicalDeviceProperties p;
     vkGetPhysicalDeviceProperties(pd, &p);
     uint32_t family;
-    return p.apiVersion >= VK_API_VERSION_1_2 && compute_queue_family(pd, &family);
+    VkPhysicalDeviceVulkan12Features f12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES };
+    VkPhysicalDeviceFeatures2 f = { .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                    .pNext = &f12 };
+    if (p.apiVersion < VK_API_VERSION_1_2) return 0;
+    vkGetPhysicalDeviceFeatures2(pd, &f);
+    return f12.bufferDeviceAddress && compute_queue_family(pd, &family);
 }
 
 static int name_contains(const char* name, const char* want)
@@ -265,8 +271,13 @@ static tb_result create_device(tb_gpu* gpu, const tb_gpu_options* options)
         .sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO,
         .queueFamilyIndex = gpu->queue_family, .queueCount = 1, .pQueuePriorities = &priority,
     };
+    /* Buffer device addresses let the parallel primitives work on any buffer. */
+    VkPhysicalDeviceVulkan12Features features12 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .bufferDeviceAddress = VK_TRUE,
+    };
     VkDeviceCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &features12,
         .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue,
         .enabledExtensionCount = options->device_extension_count,
         .ppEnabledExtensionNames = options->device_extensions,

@@ -1,6 +1,7 @@
 /* Recording the step graph into one command buffer. */
 #include "gpu/graph.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "layout.h"
@@ -20,11 +21,24 @@ static void destroy_queries(tb_graph* graph)
     graph->queries = VK_NULL_HANDLE;
 }
 
+static void release_stage(tb_graph* graph, tb_stage* stage)
+{
+    if (stage->pipeline) vkDestroyPipeline(graph->gpu->device, stage->pipeline, NULL);
+    free(stage->passes);
+    memset(stage, 0, sizeof *stage);
+}
+
+void tb_graph_clear(tb_graph* graph)
+{
+    for (uint32_t i = 0; i < graph->count; i++) release_stage(graph, &graph->stages[i]);
+    graph->count = 0;
+    tb_graph_invalidate(graph);
+}
+
 void tb_graph_destroy(tb_graph* graph)
 {
     if (!graph->gpu) return;
-    for (uint32_t i = 0; i < graph->count; i++)
-        vkDestroyPipeline(graph->gpu->device, graph->stages[i].pipeline, NULL);
+    tb_graph_clear(graph);
     destroy_queries(graph);
     if (graph->cb) vkFreeCommandBuffers(graph->gpu->device, graph->gpu->command_pool, 1, &graph->cb);
     memset(graph, 0, sizeof *graph);
@@ -33,7 +47,8 @@ void tb_graph_destroy(tb_graph* graph)
 tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage)
 {
     if (graph->count == TB_MAX_STAGES || at > graph->count) {
-        vkDestroyPipeline(graph->gpu->device, stage->pipeline, NULL);
+        tb_stage dropped = *stage;
+        release_stage(graph, &dropped);
         return tb_fail(graph->gpu->diag, TB_ERROR_CAPACITY,
                        "the step graph holds at most %d stages", TB_MAX_STAGES);
     }
@@ -49,6 +64,32 @@ tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatc
     tb_stage stage = { .name = shader, .rule = rule };
     tb_result r = tb_pipeline_create(graph->pipelines, shader, TB_WORKGROUP_SIZE, &stage.pipeline);
     return r ? r : tb_graph_insert(graph, graph->count, &stage);
+}
+
+tb_result tb_graph_append_passes(tb_graph* graph, const char* name, tb_pass_list* list)
+{
+    tb_stage stage = { .name = name, .passes = list->passes, .pass_count = list->count };
+    memset(list, 0, sizeof *list);
+    return tb_graph_insert(graph, graph->count, &stage);
+}
+
+tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pass)
+{
+    if (list->count == list->capacity) {
+        uint32_t cap = list->capacity ? list->capacity * 2 : 16;
+        tb_pass* grown = realloc(list->passes, cap * sizeof *grown);
+        if (!grown) return tb_fail(diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+        list->passes = grown;
+        list->capacity = cap;
+    }
+    list->passes[list->count++] = *pass;
+    return TB_OK;
+}
+
+void tb_pass_list_free(tb_pass_list* list)
+{
+    free(list->passes);
+    memset(list, 0, sizeof *list);
 }
 
 void tb_graph_invalidate(tb_graph* graph)
@@ -84,8 +125,7 @@ static void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src, VkAcces
                      VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT)
 #define STAGE_STAGES (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT)
 
-static void record_dispatch(const tb_graph* graph, VkCommandBuffer cb, const tb_stage* s,
-                            VkBuffer params)
+static void record_dispatch(VkCommandBuffer cb, const tb_pass* s, VkBuffer params)
 {
     switch (s->rule) {
     case TB_DISPATCH_PER_BODY:
@@ -98,7 +138,25 @@ static void record_dispatch(const tb_graph* graph, VkCommandBuffer cb, const tb_
         vkCmdDispatchIndirect(cb, s->indirect, s->indirect_offset);
         break;
     }
-    (void)graph;
+}
+
+static void record_pass(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass* pass,
+                        VkBuffer params)
+{
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pass->pipeline);
+    if (pass->push_size)
+        vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pass->push_size, pass->push);
+    record_dispatch(cb, pass, params);
+}
+
+void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass* passes,
+                      uint32_t count, VkBuffer params)
+{
+    for (uint32_t i = 0; i < count; i++) {
+        if (i) memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                              STAGE_STAGES, STAGE_READS);
+        record_pass(cb, layout, &passes[i], params);
+    }
 }
 
 static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, VkBuffer params)
@@ -109,11 +167,15 @@ static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, 
                                        .pLabelName = s->name };
         graph->gpu->begin_label(cb, &label);
     }
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, s->pipeline);
-    if (s->push_size)
-        vkCmdPushConstants(cb, graph->pipelines->layout, VK_SHADER_STAGE_COMPUTE_BIT, 0,
-                           s->push_size, s->push);
-    record_dispatch(graph, cb, s, params);
+    if (s->pass_count) {
+        tb_passes_record(cb, graph->pipelines->layout, s->passes, s->pass_count, params);
+    } else {
+        tb_pass one = { .pipeline = s->pipeline, .rule = s->rule, .indirect = s->indirect,
+                        .indirect_offset = s->indirect_offset, .push_size = s->push_size };
+        memcpy(one.groups, s->groups, sizeof one.groups);
+        memcpy(one.push, s->push, sizeof one.push);
+        record_pass(cb, graph->pipelines->layout, &one, params);
+    }
     if (graph->gpu->end_label) graph->gpu->end_label(cb);
     if (graph->queries)
         vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, graph->queries, i + 1);
@@ -143,6 +205,14 @@ static tb_result record(tb_graph* graph, VkBuffer params)
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, graph->pipelines->layout, 0, 1,
                             &graph->pipelines->set, 0, NULL);
     for (uint32_t i = 0; i < graph->count; i++) record_stage(graph, cb, i, params);
+    if (graph->tail.src) {
+        memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        VkBufferCopy copy = { 0, 0, graph->tail.size };
+        vkCmdCopyBuffer(cb, graph->tail.src, graph->tail.dst, 1, &copy);
+        memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                       VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    }
     /* Results go to transfers (read-back, growth copies) and the host. */
     memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                    VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT,

@@ -19,6 +19,34 @@ typedef enum tb_dispatch_rule {
     TB_DISPATCH_INDIRECT,  ///< VkDispatchIndirectCommand at indirect/indirect_offset
 } tb_dispatch_rule;
 
+/// One dispatch: a pipeline, its push constants and how many workgroups.
+typedef struct tb_pass {
+    VkPipeline pipeline;
+    tb_dispatch_rule rule;
+    uint32_t groups[3];
+    VkBuffer indirect;
+    VkDeviceSize indirect_offset;
+    uint32_t push_size;
+    unsigned char push[TB_PUSH_CONSTANT_BYTES];
+} tb_pass;
+
+/// A growable list of passes, as the parallel primitives and multi-pass stages build them.
+typedef struct tb_pass_list {
+    tb_pass* passes;
+    uint32_t count, capacity;
+} tb_pass_list;
+
+/// Append a pass (copied). Fails only when host memory runs out.
+tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pass);
+void tb_pass_list_free(tb_pass_list* list);
+
+/// Record passes in order with one global memory barrier between consecutive passes (none
+/// before the first or after the last). `params` holds the per-body dispatch arguments.
+void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass* passes,
+                      uint32_t count, VkBuffer params);
+
+/// A stage of the step: one pass (its pipeline owned by the graph) or, with pass_count > 0,
+/// a sequence of passes (the graph owns the array, not their pipelines) timed as one stage.
 typedef struct tb_stage {
     const char* name;          ///< shader path, also the stats key
     VkPipeline pipeline;       ///< owned by the graph once inserted
@@ -28,7 +56,12 @@ typedef struct tb_stage {
     VkDeviceSize indirect_offset;
     uint32_t push_size;
     unsigned char push[TB_PUSH_CONSTANT_BYTES];
+    tb_pass* passes;           ///< NULL: the single dispatch above
+    uint32_t pass_count;
 } tb_stage;
+
+/// A copy recorded after the last stage of every step (counters to a host-visible buffer).
+typedef struct tb_tail_copy { VkBuffer src, dst; VkDeviceSize size; } tb_tail_copy;
 
 typedef struct tb_graph {
     tb_gpu* gpu;
@@ -38,6 +71,7 @@ typedef struct tb_graph {
     uint32_t count;
     VkCommandBuffer cb;
     VkQueryPool queries;       ///< count + 1 timestamps; VK_NULL_HANDLE without timestamps
+    tb_tail_copy tail;         ///< recorded after the last stage when src is set
     int needs_record;
     uint64_t records;
 } tb_graph;
@@ -49,6 +83,11 @@ void tb_graph_destroy(tb_graph* graph);
 tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage);
 /// Build the pipeline of an embedded shader and append it as a stage.
 tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatch_rule rule);
+
+/// Append a stage made of a pass list; the graph takes the list's array (list is emptied).
+tb_result tb_graph_append_passes(tb_graph* graph, const char* name, tb_pass_list* list);
+/// Remove every stage (before the step is built again).
+void tb_graph_clear(tb_graph* graph);
 
 /// The structure changed: record again before the next submission.
 void tb_graph_invalidate(tb_graph* graph);

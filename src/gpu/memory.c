@@ -141,8 +141,13 @@ static tb_result arena_new_block(tb_gpu* gpu, tb_arena* arena, VkDeviceSize size
     arena->blocks = grown;
     tb_block* block = &arena->blocks[arena->block_count];
     memset(block, 0, sizeof *block);
+    VkMemoryAllocateFlagsInfo flags = {
+        .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO,
+        .flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT,
+    };
     VkMemoryAllocateInfo info = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
+        .pNext = arena->host_visible ? NULL : &flags,
         .allocationSize = size, .memoryTypeIndex = arena->memory_type,
     };
     tb_result r = tb_vk_check(gpu->diag, vkAllocateMemory(gpu->device, &info, NULL, &block->memory),
@@ -183,6 +188,8 @@ tb_result tb_buffer_create(tb_memory* memory, VkDeviceSize size, VkBufferUsageFl
 {
     tb_gpu* gpu = memory->gpu;
     memset(out, 0, sizeof *out);
+    /* Device-local buffers all have an address: the primitives take them as pointers. */
+    if (!host_visible) usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
@@ -199,8 +206,14 @@ tb_result tb_buffer_create(tb_memory* memory, VkDeviceSize size, VkBufferUsageFl
     out->size = size;
     out->reserved = req.size;
     out->mapped = block->mapped ? (char*)block->mapped + out->offset : NULL;
-    return tb_vk_check(gpu->diag, vkBindBufferMemory(gpu->device, out->buffer, block->memory,
-                                                    out->offset), "vkBindBufferMemory");
+    r = tb_vk_check(gpu->diag, vkBindBufferMemory(gpu->device, out->buffer, block->memory,
+                                                 out->offset), "vkBindBufferMemory");
+    if (!r && !host_visible) {
+        VkBufferDeviceAddressInfo address = {
+            .sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = out->buffer };
+        out->address = vkGetBufferDeviceAddress(gpu->device, &address);
+    }
+    return r;
 }
 
 void tb_buffer_destroy(tb_memory* memory, tb_buffer* buffer)
