@@ -93,6 +93,23 @@ typedef struct tb_world_def {
     /// Largest rotation a body may make in one step, radians. Faster spins are clamped for
     /// the orientation update (their stored angular velocity is kept). Default pi/4.
     float max_rotation_per_step;
+    /// Contact pairs the GPU buffers hold at first (per step); they grow when a step finds
+    /// more (the step is then run again, see tb_world_stats.steps_redone). 0: 4 per body
+    /// of initial_body_capacity.
+    uint32_t initial_pair_capacity;
+    /// Velocity iterations of the contact solver per step. Default 10. At least 1.
+    uint32_t solver_iterations;
+    /// Contact margin, m: shapes closer than this get (speculative) contact points, so a
+    /// resting contact does not flicker on and off. Default 0.02. >= 0.
+    float contact_margin;
+    /// Approach speed, m/s, above which restitution applies; slower impacts do not bounce,
+    /// so resting bodies settle. Default 0.5. >= 0.
+    float restitution_threshold;
+    /// Penetration, m, left alone by position correction (keeps resting contacts touching).
+    /// Default 0.005. >= 0.
+    float penetration_slop;
+    /// Fraction of the remaining penetration corrected per step, in [0, 1]. Default 0.2.
+    float penetration_recovery;
     /// Device choice: an index into the Vulkan device list, or a case-insensitive substring
     /// of the device name. NULL: the TUMBLE_DEVICE environment variable, else a discrete
     /// GPU, else any GPU, else a CPU device (lavapipe).
@@ -165,6 +182,13 @@ typedef struct tb_world_stats {
     uint64_t buffer_growths;      ///< times a GPU buffer was grown
     uint64_t validation_messages; ///< validation layer messages (warnings and errors)
     double gpu_ms;                ///< GPU time of the last step, first to last stage
+    uint32_t pair_count;          ///< broadphase pairs in the last step
+    uint32_t pair_capacity;       ///< pairs the GPU buffers hold per step
+    uint32_t contact_count;       ///< contact points in the last step
+    uint32_t colour_count;        ///< constraint colours (solver dispatches per iteration)
+    uint32_t batch_count;         ///< subgroup-wide constraint batches of the last step
+    uint32_t colour_rounds;       ///< colouring rounds recorded in the step
+    uint64_t steps_redone;        ///< steps run again after a GPU buffer grew
     uint32_t stage_count;
     tb_stage_time stages[TB_MAX_STAGES];
 } tb_world_stats;
@@ -297,6 +321,22 @@ TB_API tb_result tb_world_read_transforms(tb_world* world, const tb_body_id* ids
 /// tight box; planes an unbounded one (half extent 1e18 on every axis).
 TB_API tb_result tb_world_read_aabbs(tb_world* world, const tb_body_id* ids, uint32_t count,
                                      tb_vec3* mins, tb_vec3* maxs);
+
+/// One contact point of the last step.
+typedef struct tb_contact {
+    tb_body_id a, b;          ///< the two bodies; the normal points from a to b
+    tb_vec3 point;            ///< world point midway between the two surfaces
+    tb_vec3 normal;           ///< unit normal, from a towards b
+    float separation;         ///< m along the normal; negative when the shapes overlap
+    float normal_impulse;     ///< N s the solver applied along the normal in the last step
+    tb_vec3 friction_impulse; ///< N s of friction, world frame
+    uint32_t feature;         ///< which features touch; equal across steps for the same ones
+} tb_contact;
+
+/// Contact points of the last step, grouped by pair. Writes at most `capacity` contacts
+/// to `out` (may be NULL with capacity 0) and the number that exist to *count.
+TB_API tb_result tb_world_read_contacts(tb_world* world, tb_contact* out, uint32_t capacity,
+                                        uint32_t* count);
 
 /// Ids of live bodies in slot order; returns how many were written (at most `capacity`).
 TB_API uint32_t tb_world_body_ids(const tb_world* world, tb_body_id* out, uint32_t capacity);

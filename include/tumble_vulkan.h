@@ -57,6 +57,19 @@ typedef struct tb_vulkan_bodies {
 
 TB_API tb_result tb_world_vulkan_bodies(tb_world* world, tb_vulkan_bodies* out);
 
+/// The contact manifolds of the last step on the GPU (tb_gpu_manifold in
+/// glsl/common/layout.h: one per broadphase pair, info.x of them hold points). Valid until
+/// the next step.
+typedef struct tb_vulkan_contacts {
+    VkBuffer manifolds;
+    VkDeviceSize offset;        ///< byte offset of the last step's first manifold
+    uint32_t count;             ///< manifolds of the last step
+    uint32_t stride;            ///< bytes per manifold
+    uint64_t generation;        ///< changes whenever the buffer is replaced
+} tb_vulkan_contacts;
+
+TB_API tb_result tb_world_vulkan_contacts(tb_world* world, tb_vulkan_contacts* out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,28 +1,38 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 // World AABB of every body from its shape's local AABB: the centre is carried by the pose,
 // the half extents by |R| (the sum of |column k| * h_k), which bounds the rotated box
 // exactly. A sphere's box does not turn with it: its half extent stays the radius.
 // Dead slots get an empty (inverted) box so nothing can overlap them.
+// The largest side of any dynamic body's box goes to counters.grid.x: it sizes the grid.
 #include "world.glsl"
 #include "quat.glsl"
 
 void main()
 {
     uint i = body_thread_index();
-    if (i >= params.counts.x) return;
-    if (!body_is(i, TB_BODY_FLAG_ALIVE)) {
-        body_aabb_min[i] = vec4(3.0e38);
-        body_aabb_max[i] = vec4(-3.0e38);
-        return;
+    if (step_aborted()) return;
+    float side = 0.0;
+    if (i < params.counts.x) {
+        if (!body_is(i, TB_BODY_FLAG_ALIVE)) {
+            body_aabb_min[i] = vec4(3.0e38);
+            body_aabb_max[i] = vec4(-3.0e38);
+        } else {
+            tb_gpu_shape shape = shapes[body_info[i].x];
+            mat3 r = quat_to_mat3(body_rot[i]);
+            vec3 h = shape.aabb_half.xyz;
+            vec3 centre = body_pos[i].xyz + r * shape.aabb_center.xyz;
+            vec3 extent = shape.info.x == TB_GPU_SHAPE_SPHERE
+                              ? vec3(shape.params.x)
+                              : abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
+            body_aabb_min[i] = vec4(centre - extent, 0.0);
+            body_aabb_max[i] = vec4(centre + extent, 0.0);
+            if (body_is(i, TB_BODY_FLAG_DYNAMIC))
+                side = 2.0 * max(extent.x, max(extent.y, extent.z));
+        }
     }
-    tb_gpu_shape shape = shapes[body_info[i].x];
-    mat3 r = quat_to_mat3(body_rot[i]);
-    vec3 h = shape.aabb_half.xyz;
-    vec3 centre = body_pos[i].xyz + r * shape.aabb_center.xyz;
-    vec3 extent = shape.info.x == TB_GPU_SHAPE_SPHERE
-                      ? vec3(shape.params.x)
-                      : abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
-    body_aabb_min[i] = vec4(centre - extent, 0.0);
-    body_aabb_max[i] = vec4(centre + extent, 0.0);
+    // Positive floats order like their bits: one atomic per subgroup.
+    float largest = subgroupMax(side);
+    if (subgroupElect() && largest > 0.0) atomicMax(counters.grid.x, floatBitsToUint(largest));
 }

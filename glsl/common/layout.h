@@ -96,6 +96,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 /* Threads per workgroup of per-body stages. */
 #define TB_WORKGROUP_SIZE       64
+/* Threads per workgroup of the solver's per-colour dispatches. */
+#define TB_SOLVER_WORKGROUP_SIZE 64
 
 /* Parameters of the step, written by the host before a submission (never mid-step). */
 TB_STRUCT(tb_gpu_params) {

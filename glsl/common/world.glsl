@@ -18,12 +18,44 @@ layout(set = 0, binding = TB_BIND_BODY_INFO, std430) readonly buffer BodyInfo { 
 layout(set = 0, binding = TB_BIND_BODY_AABB_MIN, std430) buffer BodyAabbMin { vec4 body_aabb_min[]; };
 layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { vec4 body_aabb_max[]; };
 layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
+layout(set = 0, binding = TB_BIND_COUNTERS, std430) coherent buffer Counters { tb_gpu_counters counters; };
+layout(set = 0, binding = TB_BIND_BODY_PAIRS, std430) buffer BodyPairs { uvec4 body_pairs[]; };
+layout(set = 0, binding = TB_BIND_BODY_PUSH, std430) buffer BodyPush { vec4 body_push[]; };
+layout(set = 0, binding = TB_BIND_BODY_CLAIM, std430) buffer BodyClaim { uint body_claim[]; };
+layout(set = 0, binding = TB_BIND_BODY_PAIR_COUNT, std430) buffer BodyPairCount { uint body_pair_count[]; };
+layout(set = 0, binding = TB_BIND_GRID_KEYS, std430) buffer GridKeys { uint grid_keys[]; };
+layout(set = 0, binding = TB_BIND_GRID_BODIES, std430) buffer GridBodies { uint grid_bodies[]; };
+layout(set = 0, binding = TB_BIND_GRID_TABLE, std430) buffer GridTable { uvec2 grid_table[]; };
+layout(set = 0, binding = TB_BIND_LARGE_FLAGS, std430) buffer LargeFlags { uint large_flags[]; };
+layout(set = 0, binding = TB_BIND_LARGE_LIST, std430) buffer LargeList { uint large_list[]; };
+layout(set = 0, binding = TB_BIND_PAIRS, std430) buffer Pairs { uvec4 pairs[]; };
+layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_manifold manifolds[]; };
+layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
+layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()
 {
     uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
     return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+}
+
+// Threads of indirect dispatches laid out the same way (rows of workgroups).
+uint flat_thread_index()
+{
+    return body_thread_index();
+}
+
+// The step was abandoned (a buffer overflowed): no stage may change anything.
+bool step_aborted()
+{
+    return counters.state.x != 0u;
+}
+
+// Base index of this step's half of the pair, manifold and per-body pair arrays.
+uint current_half()
+{
+    return counters.state.y & 1u;
 }
 
 bool body_is(uint i, uint flags)

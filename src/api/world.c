@@ -9,13 +9,8 @@
 #define DEFAULT_MAX_BODIES (1u << 24)
 #define DEFAULT_MAX_SHAPES (1u << 20)
 #define INITIAL_SHAPE_CAPACITY 16u
-
-/* The step, in order. Names are shader paths under glsl/ and the keys of the stats. */
-static const struct { const char* shader; tb_dispatch_rule rule; } step_stages[TB_STAGE_COUNT] = {
-    [TB_STAGE_APPLY_FORCES] = { "integrate/apply_forces", TB_DISPATCH_PER_BODY },
-    [TB_STAGE_INTEGRATE] = { "integrate/integrate", TB_DISPATCH_PER_BODY },
-    [TB_STAGE_WORLD_AABB] = { "broadphase/world_aabb", TB_DISPATCH_PER_BODY },
-};
+#define INITIAL_COLOUR_ROUNDS 16u
+#define MAX_REDO 16
 
 static uint16_t next_world_serial(void)
 {
@@ -34,6 +29,20 @@ static tb_result check_world_def(tb_diag* diag, const tb_world_def* def)
     if (!isfinite(def->max_rotation_per_step) || def->max_rotation_per_step <= 0)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "max_rotation_per_step must be finite "
                        "and > 0, not %g", (double)def->max_rotation_per_step);
+    if (def->solver_iterations < 1 || def->solver_iterations > 1000)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "solver_iterations must be in [1, 1000], "
+                       "not %u", def->solver_iterations);
+    const struct { float v; const char* name; float hi; } ranges[] = {
+        { def->contact_margin, "contact_margin", 1e30f },
+        { def->restitution_threshold, "restitution_threshold", 1e30f },
+        { def->penetration_slop, "penetration_slop", 1e30f },
+        { def->penetration_recovery, "penetration_recovery", 1.0f },
+    };
+    for (size_t i = 0; i < sizeof ranges / sizeof ranges[0]; i++)
+        if (!isfinite(ranges[i].v) || ranges[i].v < 0 || ranges[i].v > ranges[i].hi)
+            return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s must be finite, >= 0%s, not %g",
+                           ranges[i].name, ranges[i].hi == 1.0f ? " and <= 1" : "",
+                           (double)ranges[i].v);
     return TB_OK;
 }
 
@@ -77,8 +86,13 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     r = create_shape_buffer(w, INITIAL_SHAPE_CAPACITY);
     if (!r) r = tb_body_store_init(&w->store, &w->memory, &w->pipelines, &w->transfer,
                                    def->initial_body_capacity);
-    for (uint32_t i = 0; i < TB_STAGE_COUNT && !r; i++)
-        r = tb_graph_append_shader(&w->graph, step_stages[i].shader, step_stages[i].rule);
+    uint32_t pairs = def->initial_pair_capacity ? def->initial_pair_capacity
+                                                : 4 * (w->store.capacity ? w->store.capacity : 1);
+    if (!r) r = tb_prims_init(&w->prims, &w->pipelines);
+    if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
+                            w->store.capacity, pairs);
+    if (!r) r = tb_step_kernels_create(w);
+    if (!r) r = tb_step_build(w);
     return r;
 }
 
@@ -96,6 +110,12 @@ tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* ex
     w->serial = next_world_serial();
     w->gravity = def->gravity;
     w->max_rotation_per_step = def->max_rotation_per_step;
+    w->solver_iterations = def->solver_iterations;
+    w->contact_margin = def->contact_margin;
+    w->restitution_threshold = def->restitution_threshold;
+    w->penetration_slop = def->penetration_slop;
+    w->penetration_recovery = def->penetration_recovery;
+    w->colour_rounds = INITIAL_COLOUR_ROUNDS;
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
     r = create_gpu_objects(w, def, extra);
@@ -121,6 +141,9 @@ void tb_world_destroy(tb_world* w)
     if (w->gpu.device) vkDeviceWaitIdle(w->gpu.device);
     if (w->gpu.device) {
         tb_graph_destroy(&w->graph);
+        tb_step_kernels_destroy(w);
+        tb_sim_destroy(&w->sim);
+        tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);
         tb_buffer_destroy(&w->memory, &w->shape_buffer);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
@@ -159,8 +182,9 @@ tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
 {
     int grew = 0;
     tb_result r = tb_body_store_reserve(&w->store, &w->transfer, slots, &grew);
+    if (!r && grew) r = tb_sim_reserve_bodies(&w->sim, &w->transfer, w->store.capacity);
     if (grew) {
-        tb_graph_invalidate(&w->graph);
+        w->step_built = 0;
         w->buffer_generation++;
     }
     return r;
@@ -178,6 +202,10 @@ static void write_params(tb_world* w, float dt)
     p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, 0, 0 };
     p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
+    p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
+                                  w->solver_iterations };
+    p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold, w->penetration_slop,
+                                w->penetration_recovery };
 }
 
 tb_result tb_world_prepare_shapes(tb_world* w)
@@ -200,6 +228,8 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
     if (r) return r;
     write_params(w, dt);
     vkCmdUpdateBuffer(t->cb, w->params_buffer.buffer, 0, sizeof w->params, &w->params);
+    uint32_t no_abort = 0;   /* a step abandoned before is run again from here */
+    vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, state), 4, &no_abort);
     if (shape_bytes) {
         void* dst = tb_transfer_upload(t, w->shape_buffer.buffer, 0, shape_bytes);
         if (dst) memcpy(dst, w->gpu_shapes, shape_bytes);
@@ -245,22 +275,69 @@ static tb_result submit_steps(tb_world* w, uint32_t n)
     return r;
 }
 
+/* A step the GPU abandoned: grow what overflowed so the step fits when run again. */
+static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
+{
+    tb_result r = TB_OK;
+    if (c->state.x & TB_ABORT_PAIRS) {
+        uint64_t want = (uint64_t)c->state.w + c->state.w / 2 + 64;
+        if (want < 2ull * w->sim.pair_capacity) want = 2ull * w->sim.pair_capacity;
+        if (want > TB_MAX_PAIR_CAPACITY) want = TB_MAX_PAIR_CAPACITY;
+        if (c->state.w > TB_MAX_PAIR_CAPACITY)
+            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step found %u contact pairs, more "
+                           "than the %u the solver can index", c->state.w, TB_MAX_PAIR_CAPACITY);
+        r = tb_sim_reserve_pairs(&w->sim, &w->transfer, (uint32_t)want);
+    }
+    if (!r && (c->state.x & TB_ABORT_COLOURS)) {
+        uint32_t rounds = w->colour_rounds * 2;
+        w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
+    }
+    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS)))
+        r = tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU abandoned a step for an unknown reason "
+                    "(flags %#x)", c->state.x);
+    w->step_built = 0;
+    w->buffer_generation++;
+    return r;
+}
+
+/* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
+static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
+{
+    tb_result r = tb_world_prepare_shapes(w);
+    if (!r && !w->step_built) r = tb_step_build(w);
+    if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);
+    if (!r) r = record_transfer(w, dt, 0, NULL);
+    if (!r) r = submit_steps(w, n);
+    if (r) return r;
+    tb_body_store_stepped(&w->store);
+    w->submits++;
+    const tb_gpu_counters* c = tb_sim_counters(&w->sim);
+    *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
+    w->gpu_steps += *done;
+    if (c->state.x) r = grow_for(w, c);
+    return r;
+}
+
 tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
     if (!isfinite(dt) || dt <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
                        (double)dt);
-    if (n == 0) return TB_OK;
-    tb_result r = tb_world_prepare_shapes(w);
-    if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);
-    if (!r) r = record_transfer(w, dt, 0, NULL);
-    if (!r) r = submit_steps(w, n);
-    if (r) return r;
-    tb_body_store_stepped(&w->store);
-    w->steps += n;
-    w->submits++;
-    tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
+    uint32_t left = n, redo = 0;
+    while (left > 0) {
+        uint32_t done = 0;
+        tb_result r = run_steps(w, dt, left, &done);
+        w->steps += done;
+        left -= done;
+        if (r) return r;
+        if (left == 0) break;
+        w->steps_redone++;
+        if (++redo > MAX_REDO)
+            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step still overflowed after %d "
+                           "buffer growths", MAX_REDO);
+    }
+    if (n) tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
     return TB_OK;
 }
 
@@ -296,6 +373,15 @@ tb_result tb_world_get_stats(const tb_world* w, tb_world_stats* out)
     out->buffer_growths = w->store.growths;
     out->validation_messages = w->diag.validation_messages;
     out->gpu_ms = w->gpu_ms;
+    const tb_gpu_counters* c = tb_sim_counters(&w->sim);
+    out->pair_count = c->state.z;
+    out->pair_capacity = w->sim.pair_capacity;
+    out->contact_count = c->solver.w;
+    out->colour_count = c->solver.x;
+    out->batch_count = c->solver.z;
+    out->colour_rounds = w->colour_rounds;
+    out->steps_redone = w->steps_redone;
+    out->buffer_growths += w->sim.growths;
     out->stage_count = w->graph.count;
     for (uint32_t i = 0; i < w->graph.count; i++) {
         out->stages[i].name = w->graph.stages[i].name;

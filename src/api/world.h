@@ -7,11 +7,22 @@
 #include "gpu/graph.h"
 #include "gpu/memory.h"
 #include "gpu/pipeline.h"
+#include "gpu/prims.h"
+#include "gpu/sim.h"
 #include "gpu/transfer.h"
 #include "layout.h"
 #include "tumble.h"
 
 #define TB_DEF_COOKIE 0x54554d42 /* "TUMB" */
+
+/// The step's compute kernels (src/api/step.c names their shaders).
+typedef enum tb_kernel {
+    TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_GRID_ASSIGN, TB_KERNEL_GRID_RANGES,
+    TB_KERNEL_GRID_PAIRS, TB_KERNEL_PAIR_CHECK, TB_KERNEL_CONTACTS, TB_KERNEL_APPLY_FORCES,
+    TB_KERNEL_COLOUR_CLAIM, TB_KERNEL_COLOUR_DECIDE, TB_KERNEL_COLOUR_FINISH,
+    TB_KERNEL_COLOUR_SCATTER, TB_KERNEL_PREPARE, TB_KERNEL_SOLVE, TB_KERNEL_SOLVE_TAIL,
+    TB_KERNEL_INTEGRATE, TB_KERNEL_STEP_END, TB_KERNEL_COUNT
+} tb_kernel;
 
 /// Host-side record of a body; what the GPU needs lives in the body store.
 typedef struct tb_body_record {
@@ -51,6 +62,15 @@ struct tb_world {
     tb_graph graph;
     tb_transfer transfer;
     tb_body_store store;
+    tb_prims prims;
+    tb_sim sim;
+    VkPipeline kernels[TB_KERNEL_COUNT];
+    int step_built;              ///< the graph holds the current step (rounds, capacities)
+    uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
+    uint32_t solver_iterations;
+    float contact_margin, restitution_threshold, penetration_slop, penetration_recovery;
+    uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
+    uint64_t steps_redone;       ///< steps run again after a buffer grew
     tb_buffer params_buffer;
     tb_gpu_params params;
 
@@ -93,6 +113,12 @@ tb_result tb_world_prepare_shapes(tb_world* w);
 tb_result tb_world_fetch(tb_world* w, uint32_t mask);
 /// Make room for `slots` body slots on the GPU.
 tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots);
+
+/* step.c */
+tb_result tb_step_kernels_create(tb_world* w);
+void tb_step_kernels_destroy(tb_world* w);
+/// Build the step graph for the current capacities and colouring rounds.
+tb_result tb_step_build(tb_world* w);
 
 /* checks.c */
 int tb_finite3(tb_vec3 v);

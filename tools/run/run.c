@@ -118,6 +118,10 @@ static int step_in_chunks(tb_world* world, const scene* sc, const tb_body_id* sa
             if (r != TB_OK) return fail(world, "tb_world_read_transforms", r);
             printf("  body 0 height %.4f m", p.y);
         }
+        tb_world_stats st;
+        if (tb_world_get_stats(world, &st) == TB_OK)
+            printf("  pairs %u contacts %u colours %u  %.3f ms/step GPU", st.pair_count,
+                   st.contact_count, st.colour_count, st.gpu_ms);
         printf("\n");
     }
     return 0;

@@ -4,22 +4,14 @@
  * check / destroy functions and adding one line to the table.
  */
 #include "scenes.h"
+#include "instance.h"
 
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* What any scene keeps after building: the ids it made (dynamic first) and, for scenes
- * whose result has a closed form, each body's initial position and velocity. */
-struct scene_instance {
-    uint32_t count;
-    tb_body_id* ids;
-    tb_vec3* x0;
-    tb_vec3* v0;
-};
-
-static scene_instance* instance_alloc(uint32_t count)
+scene_instance* instance_alloc(uint32_t count)
 {
     scene_instance* inst = calloc(1, sizeof *inst);
     if (!inst) return NULL;
@@ -35,7 +27,7 @@ static scene_instance* instance_alloc(uint32_t count)
     return inst;
 }
 
-static void instance_free(scene_instance* inst)
+void instance_free(scene_instance* inst)
 {
     if (!inst) return;
     free(inst->ids);
@@ -46,7 +38,7 @@ static void instance_free(scene_instance* inst)
 
 /* ---- deterministic jitter: xorshift32, so every run of a seed builds the same scene ---- */
 
-static uint32_t rng_next(uint32_t* state)
+uint32_t scene_rng_next(uint32_t* state)
 {
     uint32_t x = *state;
     x ^= x << 13;
@@ -57,12 +49,12 @@ static uint32_t rng_next(uint32_t* state)
 }
 
 /* Uniform in [-1, 1). */
-static float rng_signed(uint32_t* state)
+float scene_rng_signed(uint32_t* state)
 {
-    return (float)((double)rng_next(state) / 2147483648.0 - 1.0);
+    return (float)((double)scene_rng_next(state) / 2147483648.0 - 1.0);
 }
 
-static uint32_t rng_seed(uint32_t seed)
+uint32_t scene_rng_seed(uint32_t seed)
 {
     /* xorshift has a fixed point at 0; scramble so nearby seeds diverge at once. */
     uint32_t s = seed * 2654435761u + 0x9e3779b9u;
@@ -72,9 +64,9 @@ static uint32_t rng_seed(uint32_t seed)
 static tb_vec3 rng_vec3(uint32_t* state, float scale)
 {
     tb_vec3 v;
-    v.x = scale * rng_signed(state);
-    v.y = scale * rng_signed(state);
-    v.z = scale * rng_signed(state);
+    v.x = scale * scene_rng_signed(state);
+    v.y = scale * scene_rng_signed(state);
+    v.z = scale * scene_rng_signed(state);
     return v;
 }
 
@@ -108,7 +100,7 @@ static tb_vec3 grid_position(uint32_t i, uint32_t side)
 static void freefall_fill_defs(tb_body_def* defs, uint32_t n, uint32_t seed,
                                tb_shape_id sphere, tb_shape_id box)
 {
-    uint32_t rng = rng_seed(seed);
+    uint32_t rng = scene_rng_seed(seed);
     uint32_t side = grid_side(n);
     for (uint32_t i = 0; i < n; i++) {
         tb_body_def d = tb_default_body_def();
@@ -164,12 +156,12 @@ static tb_result freefall_build(tb_world* world, const scene_params* params,
     return TB_OK;
 }
 
-static int vec3_finite(tb_vec3 v)
+int scene_vec3_finite(tb_vec3 v)
 {
     return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
-static int quat_finite(tb_quat q)
+int scene_quat_finite(tb_quat q)
 {
     return isfinite(q.x) && isfinite(q.y) && isfinite(q.z) && isfinite(q.w);
 }
@@ -203,7 +195,7 @@ static tb_result freefall_check(tb_world* world, const scene_instance* inst, uin
         double max_error = 0.0;
         uint32_t nan_count = 0;
         for (uint32_t i = 0; i < n; i++) {
-            if (!vec3_finite(pos[i]) || !quat_finite(rot[i])) {
+            if (!scene_vec3_finite(pos[i]) || !scene_quat_finite(rot[i])) {
                 nan_count++;
                 continue;
             }
@@ -227,6 +219,14 @@ static const scene scenes[] = {
     { "freefall", "spheres and boxes in free flight on a 3-D grid, no ground; checks "
                   "positions against the closed form", 1.0f / 60.0f, 1000, 200,
       freefall_build, freefall_check, instance_free },
+    { "spheres", "N spheres on a jittered grid dropped into a walled box; checks nan, "
+                 "escaped, max_penetration", 1.0f / 60.0f, 10000, 300,
+      spheres_build, pile_check, instance_free },
+    { "boxes", "N boxes on a jittered grid dropped into a walled box; checks nan, "
+               "escaped, max_penetration", 1.0f / 60.0f, 10000, 300,
+      boxes_build, pile_check, instance_free },
+    { "pile", "spheres and boxes (half each) dropped into a walled box: the default "
+              "scene", 1.0f / 60.0f, 4000, 360, mixed_build, pile_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))
@@ -247,7 +247,7 @@ const scene* scene_list(uint32_t* count)
 
 const scene* scene_default(void)
 {
-    return scene_find("freefall");
+    return scene_find("pile");
 }
 
 const tb_body_id* scene_body_ids(const scene_instance* inst, uint32_t* count)

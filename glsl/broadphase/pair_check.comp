@@ -1,0 +1,19 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// After the scan of the per-body counts: abandon the step when the pairs do not fit (the
+// host grows the buffer and runs the step again), else size the per-pair dispatches.
+#include "world.glsl"
+
+void main()
+{
+    if (step_aborted() || gl_LocalInvocationID.x != 0u) return;
+    uint total = counters.state.z;
+    if (total > params.capacity.x) {
+        counters.state.w = total;
+        counters.state.x |= TB_ABORT_PAIRS;
+        return;
+    }
+    uint groups = (total + TB_WORKGROUP_SIZE - 1u) / TB_WORKGROUP_SIZE;
+    uint x = min(groups, 65535u);
+    counters.pair_dispatch = uvec4(x, x == 0u ? 1u : (groups + x - 1u) / x, 1u, 0u);
+}

@@ -1,0 +1,81 @@
+/* Reading the last step's contacts back from the GPU. */
+#include <math.h>
+#include <string.h>
+
+#include "api/world.h"
+
+static tb_body_id id_of(const tb_world* w, uint32_t slot)
+{
+    if (slot >= w->body_slots.used || !w->bodies[slot].alive) return tb_null_body;
+    return (tb_body_id){ slot + 1, w->serial, w->bodies[slot].generation };
+}
+
+/* The two friction directions the solver uses for a normal: any deterministic basis does
+ * for the read-back as long as it spans the tangent plane; the solver stores its own. */
+static void tangent_basis(tb_vec3 n, tb_vec3* t1, tb_vec3* t2)
+{
+    if (fabsf(n.x) >= 0.57735f) *t1 = (tb_vec3){ n.y, -n.x, 0.0f };
+    else *t1 = (tb_vec3){ 0.0f, n.z, -n.y };
+    float len = sqrtf(t1->x * t1->x + t1->y * t1->y + t1->z * t1->z);
+    *t1 = (tb_vec3){ t1->x / len, t1->y / len, t1->z / len };
+    *t2 = (tb_vec3){ n.y * t1->z - n.z * t1->y, n.z * t1->x - n.x * t1->z, n.x * t1->y - n.y * t1->x };
+}
+
+static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu_constraint* c,
+                       tb_contact* out, uint32_t room)
+{
+    uint32_t points = m->info.x < TB_MAX_MANIFOLD_POINTS ? m->info.x : TB_MAX_MANIFOLD_POINTS;
+    tb_vec3 n = { m->normal.x, m->normal.y, m->normal.z };
+    tb_vec3 t1, t2;
+    tangent_basis(n, &t1, &t2);
+    if (c) {
+        t1 = (tb_vec3){ c->tangent1.x, c->tangent1.y, c->tangent1.z };
+        t2 = (tb_vec3){ c->tangent2.x, c->tangent2.y, c->tangent2.z };
+    }
+    for (uint32_t k = 0; k < points && k < room; k++) {
+        const tb_gpu_vec4* p = &m->point[k];
+        const tb_gpu_vec4* j = &m->impulse[k];
+        out[k] = (tb_contact){
+            .a = id_of(w, m->info.y), .b = id_of(w, m->info.z),
+            .point = { p->x, p->y, p->z }, .normal = n, .separation = p->w,
+            .normal_impulse = j->x,
+            .friction_impulse = { j->y * t1.x + j->z * t2.x, j->y * t1.y + j->z * t2.y,
+                                  j->y * t1.z + j->z * t2.z },
+            .feature = (&m->feature.x)[k],
+        };
+    }
+    return points;
+}
+
+tb_result tb_world_read_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count)
+{
+    if (!w || !count || (capacity && !out)) return TB_ERROR_INVALID_ARGUMENT;
+    *count = 0;
+    uint32_t pairs = w->gpu_steps ? tb_sim_counters(&w->sim)->state.z : 0;
+    if (pairs > w->sim.pair_capacity) pairs = 0;
+    if (!pairs) return TB_OK;
+    uint32_t half = (uint32_t)((w->gpu_steps - 1) & 1);
+    VkDeviceSize bytes = (VkDeviceSize)pairs * sizeof(tb_gpu_manifold);
+    VkDeviceSize cbytes = (VkDeviceSize)pairs * sizeof(tb_gpu_constraint);
+    tb_transfer* t = &w->transfer;
+    tb_result r = tb_transfer_begin(t, bytes + cbytes + 64);
+    if (r) return r;
+    const void* m = tb_transfer_download(t, w->sim.pair[TB_SIM_MANIFOLDS].buffer,
+                                         half * (VkDeviceSize)w->sim.pair_capacity *
+                                         sizeof(tb_gpu_manifold), bytes);
+    const void* c = tb_transfer_download(t, w->sim.pair[TB_SIM_CONSTRAINTS].buffer, 0, cbytes);
+    r = tb_transfer_end(t);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &t->cb, 1);
+    if (r) return r;
+    uint32_t total = 0;
+    for (uint32_t p = 0; p < pairs; p++) {
+        tb_gpu_manifold mf;
+        tb_gpu_constraint cn;
+        memcpy(&mf, (const tb_gpu_manifold*)m + p, sizeof mf);
+        memcpy(&cn, (const tb_gpu_constraint*)c + p, sizeof cn);
+        uint32_t room = total < capacity ? capacity - total : 0;
+        total += unpack(w, &mf, &cn, out ? out + total : NULL, room);
+    }
+    *count = total;
+    return TB_OK;
+}

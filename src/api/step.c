@@ -1,0 +1,178 @@
+/* The step as a graph of stages, built from the kernels and the parallel primitives.
+ *
+ * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> forces -> colouring ->
+ * solver -> integration. Gravity is applied after the pairs are known, so a step that
+ * overflows a buffer is abandoned before any body changes; and before the solver, so a
+ * body resting on another has its weight cancelled by the contact in the same step and
+ * does not sink or jitter.
+ */
+#include <string.h>
+
+#include "api/world.h"
+
+typedef struct kernel_def { const char* shader; uint32_t workgroup; } kernel_def;
+
+static const kernel_def kernel_defs[TB_KERNEL_COUNT] = {
+    [TB_KERNEL_STEP_BEGIN] = { "step/begin", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_WORLD_AABB] = { "broadphase/world_aabb", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_GRID_ASSIGN] = { "broadphase/grid_assign", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_GRID_RANGES] = { "broadphase/grid_ranges", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_GRID_PAIRS] = { "broadphase/grid_pairs", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_PAIR_CHECK] = { "broadphase/pair_check", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_CONTACTS] = { "narrowphase/contacts", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_APPLY_FORCES] = { "integrate/apply_forces", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_COLOUR_CLAIM] = { "solver/colour_claim", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_COLOUR_DECIDE] = { "solver/colour_decide", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_COLOUR_FINISH] = { "solver/colour_finish", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_COLOUR_SCATTER] = { "solver/colour_scatter", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_PREPARE] = { "solver/prepare", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_SOLVE] = { "solver/solve", TB_SOLVER_WORKGROUP_SIZE },
+    [TB_KERNEL_SOLVE_TAIL] = { "solver/solve_tail", 1 },
+    [TB_KERNEL_INTEGRATE] = { "integrate/integrate", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_STEP_END] = { "step/end", 1 },
+};
+
+tb_result tb_step_kernels_create(tb_world* w)
+{
+    for (int k = 0; k < TB_KERNEL_COUNT; k++) {
+        tb_result r = tb_pipeline_create(&w->pipelines, kernel_defs[k].shader,
+                                         kernel_defs[k].workgroup, &w->kernels[k]);
+        if (r) return r;
+    }
+    return TB_OK;
+}
+
+void tb_step_kernels_destroy(tb_world* w)
+{
+    for (int k = 0; k < TB_KERNEL_COUNT; k++)
+        if (w->kernels[k]) vkDestroyPipeline(w->gpu.device, w->kernels[k], NULL);
+}
+
+/* ---- pass helpers ---------------------------------------------------------------------- */
+
+typedef struct builder {
+    tb_world* w;
+    tb_pass_list list;
+    tb_result r;
+} builder;
+
+static void add(builder* b, tb_kernel k, tb_dispatch_rule rule, VkDeviceSize indirect_offset,
+                uint32_t colour, uint32_t iteration, uint32_t mode)
+{
+    if (b->r) return;
+    tb_pass pass = { .pipeline = b->w->kernels[k], .rule = rule, .groups = { 1, 1, 1 },
+                     .indirect = b->w->sim.counters.buffer, .indirect_offset = indirect_offset };
+    tb_gpu_push push = { { colour, iteration, mode, 0 } };
+    pass.push_size = sizeof push;
+    memcpy(pass.push, &push, sizeof push);
+    b->r = tb_pass_list_add(&b->list, &b->w->diag, &pass);
+}
+
+static void per_body(builder* b, tb_kernel k, uint32_t mode)
+{
+    add(b, k, TB_DISPATCH_PER_BODY, 0, 0, 0, mode);
+}
+
+static void per_pair(builder* b, tb_kernel k, uint32_t colour)
+{
+    add(b, k, TB_DISPATCH_INDIRECT, TB_COUNTERS_PAIR_DISPATCH_OFFSET, colour, 0, 0);
+}
+
+static void once(builder* b, tb_kernel k)
+{
+    add(b, k, TB_DISPATCH_FIXED, 0, 0, 0, 0);
+}
+
+static void end_stage(builder* b, const char* name)
+{
+    if (!b->r) b->r = tb_graph_append_passes(&b->w->graph, name, &b->list);
+    tb_pass_list_free(&b->list);
+}
+
+static tb_gpu_ptr counter_ptr(tb_world* w, VkDeviceSize offset)
+{
+    return tb_gpu_ptr_of(&w->sim.counters, offset);
+}
+
+#define COUNTER_OFFSET(member, word) (offsetof(tb_gpu_counters, member) + 4 * (word))
+
+/* ---- stages ---------------------------------------------------------------------------- */
+
+static void grid_stage(builder* b)
+{
+    tb_world* w = b->w;
+    tb_sim* sim = &w->sim;
+    tb_gpu_ptr entries = counter_ptr(w, COUNTER_OFFSET(grid, 2));
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    per_body(b, TB_KERNEL_GRID_ASSIGN, 0);
+    if (!b->r) b->r = tb_prims_sort(&w->prims, &b->list, tb_gpu_ptr_of(&sim->body[TB_SIM_GRID_KEYS], 0),
+                                    tb_gpu_ptr_of(&sim->body[TB_SIM_GRID_BODIES], 0), entries,
+                                    sim->body_capacity, sim->table_bits + 1, scratch);
+    if (!b->r) b->r = tb_prims_compact(&w->prims, &b->list,
+                                       tb_gpu_ptr_of(&sim->body[TB_SIM_LARGE_FLAGS], 0),
+                                       tb_gpu_ptr_of(&sim->body[TB_SIM_LARGE_LIST], 0), entries,
+                                       sim->body_capacity, counter_ptr(w, COUNTER_OFFSET(grid, 1)),
+                                       scratch);
+    per_body(b, TB_KERNEL_GRID_RANGES, 0);
+    per_body(b, TB_KERNEL_GRID_PAIRS, 0);
+    tb_gpu_ptr counts = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_PAIR_COUNT], 0);
+    if (!b->r) b->r = tb_prims_scan(&w->prims, &b->list, counts, counts, entries, sim->body_capacity,
+                                    counter_ptr(w, COUNTER_OFFSET(state, 2)), scratch);
+    once(b, TB_KERNEL_PAIR_CHECK);
+    per_body(b, TB_KERNEL_GRID_PAIRS, 1);
+    end_stage(b, "broadphase/grid");
+}
+
+static void colour_stage(builder* b)
+{
+    for (uint32_t round = 0; round < b->w->colour_rounds; round++) {
+        per_pair(b, TB_KERNEL_COLOUR_CLAIM, round);
+        per_pair(b, TB_KERNEL_COLOUR_DECIDE, round);
+    }
+    once(b, TB_KERNEL_COLOUR_FINISH);
+    per_pair(b, TB_KERNEL_COLOUR_SCATTER, 0);
+    end_stage(b, "solver/colour");
+}
+
+/* Every iteration visits the colours in order, one dispatch each (constraints of a colour
+ * touch disjoint dynamic bodies, so a colour is solved in parallel without conflicts). */
+static void solve_stage(builder* b)
+{
+    tb_world* w = b->w;
+    for (uint32_t it = 0; it < w->solver_iterations; it++) {
+        for (uint32_t c = 0; c < w->colour_rounds; c++)
+            add(b, TB_KERNEL_SOLVE, TB_DISPATCH_INDIRECT,
+                TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * c, c, it, 0);
+        if (w->colour_rounds == TB_MAX_COLOURS) add(b, TB_KERNEL_SOLVE_TAIL, TB_DISPATCH_FIXED, 0, 0, it, 0);
+    }
+    end_stage(b, "solver/solve");
+}
+
+static void single(builder* b, tb_kernel k, tb_dispatch_rule rule, const char* name)
+{
+    if (rule == TB_DISPATCH_PER_BODY) per_body(b, k, 0);
+    else if (rule == TB_DISPATCH_FIXED) once(b, k);
+    else per_pair(b, k, 0);
+    end_stage(b, name);
+}
+
+tb_result tb_step_build(tb_world* w)
+{
+    tb_graph_clear(&w->graph);
+    builder b = { .w = w };
+    single(&b, TB_KERNEL_STEP_BEGIN, TB_DISPATCH_FIXED, "step/begin");
+    single(&b, TB_KERNEL_WORLD_AABB, TB_DISPATCH_PER_BODY, "broadphase/world_aabb");
+    grid_stage(&b);
+    single(&b, TB_KERNEL_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/contacts");
+    single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
+    colour_stage(&b);
+    single(&b, TB_KERNEL_PREPARE, TB_DISPATCH_INDIRECT, "solver/prepare");
+    solve_stage(&b);
+    single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");
+    single(&b, TB_KERNEL_STEP_END, TB_DISPATCH_FIXED, "step/end");
+    tb_pass_list_free(&b.list);
+    w->graph.tail = (tb_tail_copy){ w->sim.counters.buffer, w->sim.readback.buffer,
+                                    sizeof(tb_gpu_counters) };
+    w->step_built = !b.r;
+    return b.r;
+}

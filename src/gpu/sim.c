@@ -1,0 +1,194 @@
+/* The step's GPU-only buffers: creation, growth, binding. */
+#include "gpu/sim.h"
+
+#include <string.h>
+
+#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
+
+static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
+    [TB_SIM_BODY_PAIRS] = TB_BIND_BODY_PAIRS, [TB_SIM_BODY_PUSH] = TB_BIND_BODY_PUSH,
+    [TB_SIM_BODY_CLAIM] = TB_BIND_BODY_CLAIM, [TB_SIM_BODY_PAIR_COUNT] = TB_BIND_BODY_PAIR_COUNT,
+    [TB_SIM_GRID_KEYS] = TB_BIND_GRID_KEYS, [TB_SIM_GRID_BODIES] = TB_BIND_GRID_BODIES,
+    [TB_SIM_GRID_TABLE] = TB_BIND_GRID_TABLE, [TB_SIM_LARGE_FLAGS] = TB_BIND_LARGE_FLAGS,
+    [TB_SIM_LARGE_LIST] = TB_BIND_LARGE_LIST, [TB_SIM_BODY_SCRATCH] = UINT32_MAX,
+};
+
+static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
+    [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = TB_BIND_MANIFOLDS,
+    [TB_SIM_CONSTRAINTS] = TB_BIND_CONSTRAINTS, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
+};
+
+/* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
+static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t capacity,
+                               uint32_t table_size)
+{
+    switch (b) {
+    case TB_SIM_BODY_PAIRS: return (VkDeviceSize)capacity * 16;
+    case TB_SIM_BODY_PUSH: return (VkDeviceSize)capacity * 32;
+    case TB_SIM_GRID_TABLE: return (VkDeviceSize)table_size * 8;
+    case TB_SIM_BODY_SCRATCH: {
+        VkDeviceSize a = tb_prims_sort_scratch(sim->prims, capacity);
+        VkDeviceSize s = tb_prims_scan_scratch(sim->prims, capacity);
+        VkDeviceSize c = tb_prims_compact_scratch(sim->prims, capacity);
+        VkDeviceSize m = a > s ? a : s;
+        return m > c ? m : c;
+    }
+    default: return (VkDeviceSize)capacity * 4;
+    }
+}
+
+/* Pair arrays hold two halves (this step's and the previous one's), except the solver's. */
+static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
+{
+    switch (b) {
+    case TB_SIM_PAIRS: return 2 * (VkDeviceSize)capacity * 16;
+    case TB_SIM_MANIFOLDS: return 2 * (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
+    case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
+    default: return (VkDeviceSize)capacity * 4;
+    }
+}
+
+static tb_diag* diag_of(const tb_sim* sim)
+{
+    return sim->memory->gpu->diag;
+}
+
+static tb_result check_range(const tb_sim* sim, VkDeviceSize bytes, const char* what)
+{
+    VkDeviceSize range = sim->memory->gpu->props.limits.maxStorageBufferRange;
+    if (bytes <= range) return TB_OK;
+    return tb_fail(diag_of(sim), TB_ERROR_CAPACITY, "the %s need a %llu-byte buffer, beyond this "
+                   "device's storage buffer range of %llu bytes", what,
+                   (unsigned long long)bytes, (unsigned long long)range);
+}
+
+/* Replace `old` (may be empty) by a zeroed buffer of `bytes`, copying `regions` over. */
+static tb_result replace(tb_sim* sim, tb_transfer* t, tb_buffer* old, VkDeviceSize bytes,
+                         const VkBufferCopy* regions, uint32_t region_count, tb_buffer* out)
+{
+    tb_result r = tb_buffer_create(sim->memory, bytes ? bytes : 16, USAGE, 0, out);
+    if (r) return r;
+    vkCmdFillBuffer(t->cb, out->buffer, 0, VK_WHOLE_SIZE, 0);
+    if (old->buffer && region_count) {
+        VkMemoryBarrier fill_first = { .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+            .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT, .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT };
+        vkCmdPipelineBarrier(t->cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             0, 1, &fill_first, 0, NULL, 0, NULL);
+        vkCmdCopyBuffer(t->cb, old->buffer, out->buffer, region_count, regions);
+    }
+    return TB_OK;
+}
+
+/* Run the transfer, then keep the new buffers (or, on failure, drop them). */
+static tb_result finish(tb_sim* sim, tb_transfer* t, tb_buffer* olds, tb_buffer* news,
+                        const uint32_t* bindings, uint32_t count, tb_result r)
+{
+    tb_result e = tb_transfer_end(t);
+    if (!r) r = e;
+    if (!r) r = tb_gpu_submit_wait(sim->memory->gpu, &t->cb, 1);
+    for (uint32_t i = 0; i < count; i++) {
+        if (!news[i].buffer) continue;
+        tb_buffer_destroy(sim->memory, r ? &news[i] : &olds[i]);
+        if (r) continue;
+        olds[i] = news[i];
+        if (bindings[i] != UINT32_MAX) tb_pipelines_bind(sim->pipelines, bindings[i], olds[i].buffer);
+    }
+    return r;
+}
+
+static uint32_t table_bits_for(uint32_t capacity)
+{
+    uint32_t bits = 4;
+    while ((1u << bits) < 2 * capacity && bits < 30) bits++;
+    return bits;
+}
+
+tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
+{
+    if (capacity <= sim->body_capacity && sim->body[0].buffer) return TB_OK;
+    uint32_t bits = table_bits_for(capacity);
+    tb_buffer fresh[TB_SIM_BODY_BUFFER_COUNT];
+    memset(fresh, 0, sizeof fresh);
+    tb_result r = check_range(sim, body_bytes(sim, TB_SIM_BODY_PUSH, capacity, 0), "bodies");
+    if (!r) r = tb_transfer_begin(t, 0);
+    if (r) return r;
+    for (int b = 0; b < TB_SIM_BODY_BUFFER_COUNT && !r; b++) {
+        VkDeviceSize keep = b == TB_SIM_BODY_PAIRS ? body_bytes(sim, b, sim->body_capacity, 0) : 0;
+        VkBufferCopy region = { 0, 0, keep };
+        r = replace(sim, t, &sim->body[b], body_bytes(sim, b, capacity, 1u << bits), &region,
+                    keep ? 1 : 0, &fresh[b]);
+    }
+    r = finish(sim, t, sim->body, fresh, body_binding, TB_SIM_BODY_BUFFER_COUNT, r);
+    if (r) return r;
+    sim->body_capacity = capacity;
+    sim->table_bits = bits;
+    sim->table_size = 1u << bits;
+    sim->growths++;
+    return TB_OK;
+}
+
+tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
+{
+    if (pairs <= sim->pair_capacity && sim->pair[0].buffer) return TB_OK;
+    if (pairs > TB_MAX_PAIR_CAPACITY)
+        return tb_fail(diag_of(sim), TB_ERROR_CAPACITY, "%u pairs are more than the %u the "
+                       "solver's colouring can index", pairs, TB_MAX_PAIR_CAPACITY);
+    tb_buffer fresh[TB_SIM_PAIR_BUFFER_COUNT];
+    memset(fresh, 0, sizeof fresh);
+    tb_result r = check_range(sim, pair_bytes(TB_SIM_MANIFOLDS, pairs), "contact manifolds");
+    if (!r) r = tb_transfer_begin(t, 0);
+    if (r) return r;
+    for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT && !r; b++) {
+        /* Both halves move to their new places: half h starts at h * capacity. */
+        VkDeviceSize half_old = pair_bytes(b, sim->pair_capacity) / 2;
+        VkDeviceSize half_new = pair_bytes(b, pairs) / 2;
+        VkBufferCopy regions[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
+        int halves = (b == TB_SIM_PAIRS || b == TB_SIM_MANIFOLDS) && half_old ? 2 : 0;
+        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), regions, halves, &fresh[b]);
+    }
+    r = finish(sim, t, sim->pair, fresh, pair_binding, TB_SIM_PAIR_BUFFER_COUNT, r);
+    if (r) return r;
+    sim->pair_capacity = pairs;
+    sim->growths++;
+    return TB_OK;
+}
+
+tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
+                      tb_transfer* t, uint32_t body_capacity, uint32_t pair_capacity)
+{
+    memset(sim, 0, sizeof *sim);
+    sim->memory = memory;
+    sim->pipelines = pipelines;
+    sim->prims = prims;
+    tb_result r = tb_buffer_create(memory, sizeof(tb_gpu_counters), USAGE, 0, &sim->counters);
+    if (!r) r = tb_buffer_create(memory, sizeof(tb_gpu_counters),
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, 1, &sim->readback);
+    if (r) return r;
+    memset(sim->readback.mapped, 0, sizeof(tb_gpu_counters));
+    tb_pipelines_bind(pipelines, TB_BIND_COUNTERS, sim->counters.buffer);
+    r = tb_transfer_begin(t, 0);
+    if (r) return r;
+    vkCmdFillBuffer(t->cb, sim->counters.buffer, 0, VK_WHOLE_SIZE, 0);
+    r = tb_transfer_end(t);
+    if (!r) r = tb_gpu_submit_wait(memory->gpu, &t->cb, 1);
+    if (!r) r = tb_sim_reserve_bodies(sim, t, body_capacity);
+    if (!r) r = tb_sim_reserve_pairs(sim, t, pair_capacity);
+    sim->growths = 0;
+    return r;
+}
+
+void tb_sim_destroy(tb_sim* sim)
+{
+    if (!sim->memory) return;
+    for (int b = 0; b < TB_SIM_BODY_BUFFER_COUNT; b++) tb_buffer_destroy(sim->memory, &sim->body[b]);
+    for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT; b++) tb_buffer_destroy(sim->memory, &sim->pair[b]);
+    tb_buffer_destroy(sim->memory, &sim->counters);
+    tb_buffer_destroy(sim->memory, &sim->readback);
+    memset(sim, 0, sizeof *sim);
+}
+
+const tb_gpu_counters* tb_sim_counters(const tb_sim* sim)
+{
+    return (const tb_gpu_counters*)sim->readback.mapped;
+}

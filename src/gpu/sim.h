@@ -1,0 +1,55 @@
+/* The GPU-only buffers of the step: counters, per-body scratch of the broadphase and the
+ * solver, the grid, and the pair, manifold and constraint arrays.
+ *
+ * Two capacities size them: the body capacity (equal to the body store's) and the pair
+ * capacity. Growth replaces buffers (keeping what the next step needs: the pair and
+ * manifold halves and the per-body pair ranges, for warm starting), re-points the
+ * descriptor set and makes the step graph record again.
+ */
+#ifndef TB_SIM_H
+#define TB_SIM_H
+
+#include "gpu/pipeline.h"
+#include "gpu/prims.h"
+#include "gpu/transfer.h"
+#include "layout.h"
+
+typedef enum tb_sim_body_buffer {
+    TB_SIM_BODY_PAIRS, TB_SIM_BODY_PUSH, TB_SIM_BODY_CLAIM, TB_SIM_BODY_PAIR_COUNT,
+    TB_SIM_GRID_KEYS, TB_SIM_GRID_BODIES, TB_SIM_GRID_TABLE, TB_SIM_LARGE_FLAGS,
+    TB_SIM_LARGE_LIST, TB_SIM_BODY_SCRATCH, TB_SIM_BODY_BUFFER_COUNT
+} tb_sim_body_buffer;
+
+typedef enum tb_sim_pair_buffer {
+    TB_SIM_PAIRS, TB_SIM_MANIFOLDS, TB_SIM_CONSTRAINTS, TB_SIM_COLOUR_LIST,
+    TB_SIM_PAIR_BUFFER_COUNT
+} tb_sim_pair_buffer;
+
+typedef struct tb_sim {
+    tb_memory* memory;
+    tb_pipelines* pipelines;
+    tb_prims* prims;
+    tb_buffer counters;           ///< tb_gpu_counters, device-local
+    tb_buffer readback;           ///< host-visible copy of the counters after each step
+    tb_buffer body[TB_SIM_BODY_BUFFER_COUNT];
+    tb_buffer pair[TB_SIM_PAIR_BUFFER_COUNT];
+    uint32_t body_capacity;
+    uint32_t table_size;          ///< grid hash table entries, a power of two
+    uint32_t table_bits;          ///< log2(table_size)
+    uint32_t pair_capacity;       ///< pairs per half
+    uint64_t growths;
+} tb_sim;
+
+tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
+                      tb_transfer* t, uint32_t body_capacity, uint32_t pair_capacity);
+void tb_sim_destroy(tb_sim* sim);
+
+/// Match the body capacity (after the body store grew). Keeps the per-body pair ranges.
+tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity);
+/// Hold at least `pairs` pairs per half. Keeps both halves of pairs and manifolds.
+tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs);
+
+/// The counters as the last executed step left them.
+const tb_gpu_counters* tb_sim_counters(const tb_sim* sim);
+
+#endif

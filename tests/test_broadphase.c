@@ -1,0 +1,218 @@
+/* The grid broadphase against brute force: after one step, the pairs the GPU found must be
+ * exactly the pairs of AABBs (as that step computed them, grown by the contact margin)
+ * that overlap, each once, none static-static. Scenes: uniform, mixed sizes 1:1000,
+ * duplicates, touching boxes, planes and big static boxes, dead slots. */
+#include "harness.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "api/world.h"
+
+typedef struct pair { uint32_t a, b; } pair;
+
+static int pair_order(const void* x, const void* y)
+{
+    const pair* p = x;
+    const pair* q = y;
+    if (p->a != q->a) return p->a < q->a ? -1 : 1;
+    return p->b < q->b ? -1 : p->b > q->b;
+}
+
+/* The pairs of the last step, as (lower slot, higher slot), sorted. */
+static pair* gpu_pairs(tb_world* w, uint32_t* count)
+{
+    const tb_gpu_counters* c = tb_sim_counters(&w->sim);
+    uint32_t n = c->state.z;
+    assert_true(n <= w->sim.pair_capacity);
+    uint32_t half = (uint32_t)((w->gpu_steps - 1) & 1);
+    tb_transfer* t = &w->transfer;
+    th_assert_ok(tb_transfer_begin(t, (VkDeviceSize)n * 16 + 64));
+    const tb_gpu_uvec4* raw = tb_transfer_download(t, w->sim.pair[TB_SIM_PAIRS].buffer,
+                                                   (VkDeviceSize)half * w->sim.pair_capacity * 16,
+                                                   (VkDeviceSize)n * 16 + 16);
+    th_assert_ok(tb_transfer_end(t));
+    th_assert_ok(tb_gpu_submit_wait(&w->gpu, &t->cb, 1));
+    pair* out = calloc(n + 1, sizeof *out);
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t a = raw[i].x, b = raw[i].y;
+        out[i] = (pair){ a < b ? a : b, a < b ? b : a };
+    }
+    qsort(out, n, sizeof *out, pair_order);
+    *count = n;
+    return out;
+}
+
+static int touch(const tb_vec3* mn, const tb_vec3* mx, uint32_t i, uint32_t j, float m)
+{
+    return !(mn[i].x - m > mx[j].x || mn[j].x - m > mx[i].x || mn[i].y - m > mx[j].y ||
+             mn[j].y - m > mx[i].y || mn[i].z - m > mx[j].z || mn[j].z - m > mx[i].z);
+}
+
+/* Brute force over the AABBs the step used (world_aabb runs first in the step). */
+static pair* brute_pairs(tb_world* w, uint32_t* count)
+{
+    uint32_t slots = w->body_slots.used;
+    tb_body_id* ids = calloc(slots + 1, sizeof *ids);
+    tb_vec3* mn = calloc(slots + 1, sizeof *mn);
+    tb_vec3* mx = calloc(slots + 1, sizeof *mx);
+    uint32_t live = tb_world_body_ids(w, ids, slots);
+    th_assert_ok(tb_world_read_aabbs(w, ids, live, mn, mx));
+    size_t cap = 1024, n = 0;
+    pair* out = malloc(cap * sizeof *out);
+    for (uint32_t i = 0; i < live; i++) {
+        for (uint32_t j = i + 1; j < live; j++) {
+            tb_body_type ti, tj;
+            th_assert_ok(tb_body_get_type(w, ids[i], &ti));
+            th_assert_ok(tb_body_get_type(w, ids[j], &tj));
+            if (ti == TB_BODY_STATIC && tj == TB_BODY_STATIC) continue;
+            if (!touch(mn, mx, i, j, w->contact_margin)) continue;
+            if (n == cap) out = realloc(out, (cap *= 2) * sizeof *out);
+            out[n++] = (pair){ ids[i].index1 - 1, ids[j].index1 - 1 };
+        }
+    }
+    qsort(out, n, sizeof *out, pair_order);
+    free(ids);
+    free(mn);
+    free(mx);
+    *count = (uint32_t)n;
+    return out;
+}
+
+static void expect_brute_force_pairs(tb_world* w)
+{
+    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+    uint32_t ng, nb;
+    pair* g = gpu_pairs(w, &ng);
+    pair* b = brute_pairs(w, &nb);
+    for (uint32_t i = 0; i + 1 < ng; i++)
+        if (g[i].a == g[i + 1].a && g[i].b == g[i + 1].b)
+            fail_msg("pair (%u, %u) reported twice", g[i].a, g[i].b);
+    uint32_t i = 0, j = 0;
+    while (i < ng || j < nb) {
+        int o = i < ng && j < nb ? pair_order(&g[i], &b[j]) : (i < ng ? -1 : 1);
+        if (o < 0) fail_msg("GPU pair (%u, %u) does not overlap", g[i].a, g[i].b);
+        if (o > 0) fail_msg("overlapping pair (%u, %u) missed", b[j].a, b[j].b);
+        i++, j++;
+    }
+    assert_int_equal(th_stats(w).pair_count, nb);
+    free(g);
+    free(b);
+}
+
+static tb_world* zero_gravity_world(void)
+{
+    tb_world_def def = tb_default_world_def();
+    def.gravity = th_v3(0, 0, 0);
+    def.initial_body_capacity = 64;
+    def.initial_pair_capacity = 16;   /* small on purpose: the pair buffer must grow */
+    return th_world_create(&def);
+}
+
+static void random_bodies(tb_world* w, th_rng* rng, uint32_t n, float extent, float lo, float hi,
+                          float static_share)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        float size = lo * powf(hi / lo, th_rng_range(rng, 0, 1));
+        tb_shape_id s = (th_rng_u32(rng) & 1)
+                            ? th_sphere(w, size)
+                            : th_box(w, th_v3(size, size * th_rng_range(rng, 0.3f, 1), size));
+        tb_vec3 p = th_v3(th_rng_range(rng, -extent, extent), th_rng_range(rng, -extent, extent),
+                          th_rng_range(rng, -extent, extent));
+        tb_body_def d = th_rng_range(rng, 0, 1) < static_share ? th_static_def(s, p)
+                                                                : th_dynamic_def(s, p);
+        d.rotation = th_rng_quat(rng);
+        th_body(w, &d);
+    }
+}
+
+static void test_uniform(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    th_rng rng = th_rng_seed(1);
+    random_bodies(w, &rng, 2000, 3.0f, 0.2f, 0.25f, 0.1f);
+    expect_brute_force_pairs(w);
+    assert_true(th_stats(w).steps_redone >= 1);   /* 16 pairs could not hold them */
+    expect_brute_force_pairs(w);                  /* and again, after the bodies moved */
+    th_world_destroy(w);
+}
+
+static void test_mixed_sizes(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    th_rng rng = th_rng_seed(2);
+    random_bodies(w, &rng, 1500, 10.0f, 0.01f, 10.0f, 0.3f);
+    expect_brute_force_pairs(w);
+    th_world_destroy(w);
+}
+
+static void test_duplicates_and_touching(void** state)
+{
+    (void)state;
+    tb_world_def def = tb_default_world_def();
+    def.gravity = th_v3(0, 0, 0);
+    def.contact_margin = 0.0f;   /* touching faces must still count */
+    tb_world* w = th_world_create(&def);
+    tb_shape_id box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
+    for (int i = 0; i < 5; i++) {           /* five bodies in one place */
+        tb_body_def d = th_dynamic_def(box, th_v3(0, 0, 0));
+        th_body(w, &d);
+    }
+    for (int x = 0; x < 6; x++)             /* a row of boxes face to face */
+        for (int y = 0; y < 3; y++) {
+            tb_body_def d = th_dynamic_def(box, th_v3(5.0f + (float)x, (float)y, 0));
+            th_body(w, &d);
+        }
+    expect_brute_force_pairs(w);
+    th_world_destroy(w);
+}
+
+static void test_large_statics_and_dead_slots(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    tb_shape_id ground = th_plane(w, th_v3(0, 1, 0), 0.0f);
+    tb_shape_id wall = th_box(w, th_v3(20.0f, 5.0f, 0.5f));
+    tb_body_def g = th_static_def(ground, th_v3(0, -1.0f, 0));
+    th_body(w, &g);
+    tb_body_def wd = th_static_def(wall, th_v3(0, 0, 3.0f));
+    th_body(w, &wd);
+    tb_body_def g2 = th_static_def(wall, th_v3(0, 0, -3.0f));   /* static-static overlap */
+    g2.rotation = th_quat_axis_angle(th_v3(0, 1, 0), 1.2);
+    th_body(w, &g2);
+    th_rng rng = th_rng_seed(3);
+    random_bodies(w, &rng, 800, 4.0f, 0.1f, 0.3f, 0.0f);
+    tb_body_id ids[900];
+    uint32_t n = tb_world_body_ids(w, ids, 900);
+    for (uint32_t i = 3; i < n; i += 7) th_assert_ok(tb_body_destroy(w, ids[i]));
+    expect_brute_force_pairs(w);
+    th_world_destroy(w);
+}
+
+static void test_empty_and_single(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+    assert_int_equal(th_stats(w).pair_count, 0);
+    tb_body_def d = th_dynamic_def(th_sphere(w, 1.0f), th_v3(0, 0, 0));
+    th_body(w, &d);
+    expect_brute_force_pairs(w);
+    assert_int_equal(th_stats(w).pair_count, 0);
+    th_world_destroy(w);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_empty_and_single),
+        cmocka_unit_test(test_uniform),
+        cmocka_unit_test(test_mixed_sizes),
+        cmocka_unit_test(test_duplicates_and_touching),
+        cmocka_unit_test(test_large_statics_and_dead_slots),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

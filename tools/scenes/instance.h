@@ -1,0 +1,38 @@
+/* What the scene files share: the instance every scene returns, the jitter generator, and
+ * the pile scenes' entry points. Internal to tools/scenes. */
+#ifndef TUMBLE_SCENES_INSTANCE_H
+#define TUMBLE_SCENES_INSTANCE_H
+
+#include "scenes.h"
+
+/* What any scene keeps after building: the ids it made (dynamic first), for scenes whose
+ * result has a closed form each body's initial position and velocity, and for scenes in
+ * a container the container's inner bounds. */
+struct scene_instance {
+    uint32_t count;
+    tb_body_id* ids;
+    tb_vec3* x0;
+    tb_vec3* v0;
+    tb_vec3 box_min, box_max;   ///< interior of the container (pile scenes)
+};
+
+scene_instance* instance_alloc(uint32_t count);
+void instance_free(scene_instance* inst);
+
+/* Deterministic jitter: xorshift32, so every run of a seed builds the same scene. */
+uint32_t scene_rng_seed(uint32_t seed);
+uint32_t scene_rng_next(uint32_t* state);
+/// Uniform in [-1, 1).
+float scene_rng_signed(uint32_t* state);
+
+int scene_vec3_finite(tb_vec3 v);
+int scene_quat_finite(tb_quat q);
+
+/* piles.c */
+tb_result spheres_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result boxes_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result mixed_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                     scene_checks* out);
+
+#endif
