@@ -212,9 +212,12 @@ typedef enum tb_shape_type {
 typedef struct tb_shape_def {
     /// Mass per volume, kg/m^3; used when a body gives no mass. Default 1000 (water).
     float density;
-    /// Coulomb friction coefficient, >= 0. Default 0.6.
+    /// Coulomb friction coefficient, >= 0. Default 0.6. Two touching shapes slide with
+    /// the geometric mean sqrt(friction_a * friction_b): ice on anything stays slippery.
     float friction;
-    /// Restitution (bounciness) in [0, 1]. Default 0.
+    /// Restitution (bounciness) in [0, 1]. Default 0. Two touching shapes bounce with the
+    /// larger of their restitutions, for impacts faster than the world's
+    /// restitution_threshold.
     float restitution;
     /// Internal: set by tb_default_shape_def(). Do not touch.
     int32_t internal_cookie;
@@ -316,8 +319,8 @@ TB_API tb_result tb_world_read_transforms(tb_world* world, const tb_body_id* ids
                                           uint32_t count, tb_vec3* positions,
                                           tb_quat* rotations);
 
-/// World-space AABBs of `count` bodies as computed by the last step (zero before the
-/// first step that saw the body). Either array may be NULL. Boxes and spheres get their
+/// World-space AABBs of `count` bodies as the broadphase of the last step saw them: from
+/// the poses at the start of that step (zero before the first step that saw the body). Either array may be NULL. Boxes and spheres get their
 /// tight box; planes an unbounded one (half extent 1e18 on every axis).
 TB_API tb_result tb_world_read_aabbs(tb_world* world, const tb_body_id* ids, uint32_t count,
                                      tb_vec3* mins, tb_vec3* maxs);

@@ -371,12 +371,15 @@ static int append_csv(const char* path, const report* r)
     /* "a" mode's initial position is implementation-defined; seek to learn the size. */
     fseek(f, 0, SEEK_END);
     if (ftell(f) == 0)
-        fputs("device,scene,n,steps,ms_step_median,ms_step_p90,ms_wall_median,stages\n", f);
+        fputs("device,scene,n,steps,ms_step_median,ms_step_p90,ms_wall_median,stages,checks\n", f);
     csv_string(f, r->dev->name);
     fprintf(f, ",%s,%u,%u,%.6f,%.6f,%.6f,\"", r->sc->name, r->n, r->steps,
             r->sum->gpu_median, r->sum->gpu_p90, r->sum->wall_median);
     for (uint32_t i = 0; i < r->s->stage_count; i++)
         fprintf(f, "%s%s=%.6f", i ? ";" : "", r->s->stage_names[i], r->sum->stage_median[i]);
+    fputs("\",\"", f);
+    for (uint32_t i = 0; i < r->checks->count; i++)
+        fprintf(f, "%s%s=%.6g", i ? ";" : "", r->checks->items[i].key, r->checks->items[i].value);
     fputs("\"\n", f);
     int ok = !ferror(f);
     if (fclose(f) != 0) ok = 0;
