@@ -18,6 +18,10 @@ layout(set = 0, binding = TB_BIND_BODY_INFO, std430) readonly buffer BodyInfo { 
 layout(set = 0, binding = TB_BIND_BODY_AABB_MIN, std430) buffer BodyAabbMin { vec4 body_aabb_min[]; };
 layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { vec4 body_aabb_max[]; };
 layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
+layout(set = 0, binding = TB_BIND_COUNTERS, std430) buffer Counters { tb_gpu_counters counters; };
+layout(set = 0, binding = TB_BIND_BODY_PAIRS, std430) buffer BodyPairs { uvec4 body_pairs[]; };
+layout(set = 0, binding = TB_BIND_PAIRS, std430) buffer Pairs { uvec4 pairs[]; };
+layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_manifold manifolds[]; };
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()
