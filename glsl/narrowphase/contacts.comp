@@ -1,0 +1,73 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// Narrowphase: one thread per pair of this step turns the pair into a contact manifold of
+// up to four points sharing one normal, with the impulses of last step's points of the same
+// features (warm start). Dispatched indirectly over counters.pair_dispatch.
+//
+// Pair p of this step is pairs[half * capacity + p] = (a, b, colour, -), half = the step
+// parity; its manifold goes to manifolds[half * capacity + p], normal from a to b. Every
+// contact routine sees the pair in one canonical order (by shape type, then body index),
+// so the points and feature keys depend only on the unordered pair; swapping a and b only
+// negates the normal.
+#include "world.glsl"
+#include "quat.glsl"
+#include "manifold.glsl"
+#include "sphere.glsl"
+#include "box_plane.glsl"
+#include "box_box.glsl"
+
+uint pair_thread_index()
+{
+    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+    return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+}
+
+// Shape types in canonical order: sphere < box < plane, so each routine knows which shape
+// comes first. Plane against plane never arrives (planes are static); it gets no points.
+uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
+{
+    normal = vec3(0.0);
+    if (first.type == TB_GPU_SHAPE_SPHERE) {
+        if (second.type == TB_GPU_SHAPE_SPHERE) return np_sphere_sphere(t, first, second, margin, normal);
+        if (second.type == TB_GPU_SHAPE_BOX) return np_sphere_box(t, first, second, margin, normal);
+        return np_sphere_plane(t, first, second, margin, normal);
+    }
+    if (first.type == TB_GPU_SHAPE_BOX) {
+        if (second.type == TB_GPU_SHAPE_BOX) return np_box_box(t, first, second, margin, normal);
+        return np_box_plane(t, first, second, margin, normal);
+    }
+    return 0u;
+}
+
+// Writes the manifold of pair p; returns its point count.
+uint pair_contacts(uint p)
+{
+    uint half_index = counters.state.y & 1u;
+    uint slot = half_index * params.capacity.x + p;
+    uvec2 pair = pairs[slot].xy;
+    uint a = pair.x, b = pair.y;
+    np_body body_a = np_load_body(a), body_b = np_load_body(b);
+    bool swapped = body_a.type > body_b.type || (body_a.type == body_b.type && a > b);
+    np_target t = np_target_make(slot, a, b, half_index ^ 1u);
+    // One call on selected operands (not one call per order): both orders run the very
+    // same instructions, so their points agree to the bit.
+    np_body first = swapped ? body_b : body_a, second = swapped ? body_a : body_b;
+    vec3 normal;
+    uint count = np_collide(t, first, second, params.contact.x, normal);
+    np_finish(t, count, swapped ? -normal : normal, a, b,
+              sqrt(body_a.material.x * body_b.material.x), max(body_a.material.y, body_b.material.y));
+    return count;
+}
+
+void main()
+{
+    // An abandoned step (overflow upstream) leaves last step's results alone.
+    if (counters.state.x != 0u) return;
+    uint p = pair_thread_index();
+    uint count = p < counters.state.z ? pair_contacts(p) : 0u;
+    // Contact points for the stats: one atomic per subgroup.
+    uint total = subgroupAdd(count);
+    if (subgroupElect() && total != 0u) atomicAdd(counters.solver.w, total);
+}

@@ -1,0 +1,115 @@
+// What every contact routine shares: the two bodies as the narrowphase sees them, and the
+// manifold being written, with the warm start from last step's manifold of the same pair.
+//
+// Points are written to the manifold as they are found (a store with a point index is
+// cheap; a private array of points indexed at run time would not be), each with the
+// impulses last step's point of the same feature key ended with.
+#ifndef TB_NP_MANIFOLD_GLSL
+#define TB_NP_MANIFOLD_GLSL
+
+#define NP_NONE 0xffffffffu
+
+// A body's pose and shape.
+struct np_body {
+    vec3 pos;
+    mat3 rot;       // columns: the body's axes in world space
+    vec4 params;    // sphere: x radius; box: xyz half extents; plane: xyz normal, w offset
+    vec2 material;  // x friction, y restitution
+    uint type;      // TB_GPU_SHAPE_*
+};
+
+np_body np_load_body(uint i)
+{
+    uint s = body_info[i].x;
+    np_body b;
+    b.pos = body_pos[i].xyz;
+    b.rot = quat_to_mat3(body_rot[i]);
+    b.params = shapes[s].params;
+    b.material = shapes[s].material.xy;
+    b.type = shapes[s].info.x;
+    return b;
+}
+
+// Column i of m and component i of v for a run-time i, without a private array.
+vec3 np_col(mat3 m, uint i)
+{
+    return i == 0u ? m[0] : (i == 1u ? m[1] : m[2]);
+}
+
+float np_comp(vec3 v, uint i)
+{
+    return i == 0u ? v.x : (i == 1u ? v.y : v.z);
+}
+
+// +1 where v >= 0, else -1 (sign() would give 0 on a tie and lose a corner).
+vec3 np_signs(vec3 v)
+{
+    return mix(vec3(-1.0), vec3(1.0), greaterThanEqual(v, vec3(0.0)));
+}
+
+// The manifold being written, and last step's manifold of the same pair.
+struct np_target {
+    uint slot;            // index of this step's manifold (and pair)
+    uint prev;            // index of last step's manifold of the pair, NP_NONE if it had none
+    uint prev_count;
+    uvec4 prev_features;
+};
+
+// Last step's pair (a, b): a owned its pairs of that half as one run, which body_pairs[a]
+// locates (x, y for even halves, z, w for odd ones; counts are 0 before the first step).
+uint np_find_previous(uint a, uint b, uint prev_half)
+{
+    uvec4 owned = body_pairs[a];
+    uvec2 run = prev_half == 0u ? owned.xy : owned.zw;
+    uint first = prev_half * params.capacity.x + run.x;
+    for (uint i = 0u; i < run.y; i++)
+        if (pairs[first + i].xy == uvec2(a, b)) return first + i;
+    return NP_NONE;
+}
+
+np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
+{
+    np_target t;
+    t.slot = slot;
+    t.prev = np_find_previous(a, b, prev_half);
+    t.prev_count = 0u;
+    t.prev_features = uvec4(0u);
+    if (t.prev != NP_NONE) {
+        t.prev_count = min(manifolds[t.prev].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+        t.prev_features = manifolds[t.prev].feature;
+    }
+    return t;
+}
+
+// The normal and friction impulses last step's point of the same feature ended with; the
+// split impulse corrects position errors of one step only, so it starts from 0.
+vec4 np_warm_impulse(np_target t, uint feature)
+{
+    for (uint j = 0u; j < t.prev_count; j++)
+        if (t.prev_features[j] == feature) return vec4(manifolds[t.prev].impulse[j].xyz, 0.0);
+    return vec4(0.0);
+}
+
+// Point k: world point midway between the surfaces, separation along the normal.
+void np_emit(np_target t, uint k, vec3 point, float separation, uint feature)
+{
+    manifolds[t.slot].point[k] = vec4(point, separation);
+    manifolds[t.slot].impulse[k] = np_warm_impulse(t, feature);
+    manifolds[t.slot].feature[k] = feature;
+}
+
+// Normal, materials and count; unused points are zeroed so a step's output depends on
+// nothing but its input.
+void np_finish(np_target t, uint count, vec3 normal, uint a, uint b, float friction,
+               float restitution)
+{
+    for (uint k = count; k < uint(TB_MAX_MANIFOLD_POINTS); k++) {
+        manifolds[t.slot].point[k] = vec4(0.0);
+        manifolds[t.slot].impulse[k] = vec4(0.0);
+        manifolds[t.slot].feature[k] = 0u;
+    }
+    manifolds[t.slot].normal = vec4(normal, friction);
+    manifolds[t.slot].info = uvec4(count, a, b, floatBitsToUint(restitution));
+}
+
+#endif
