@@ -18,6 +18,13 @@ layout(set = 0, binding = TB_BIND_BODY_INFO, std430) readonly buffer BodyInfo { 
 layout(set = 0, binding = TB_BIND_BODY_AABB_MIN, std430) buffer BodyAabbMin { vec4 body_aabb_min[]; };
 layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { vec4 body_aabb_max[]; };
 layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
+layout(set = 0, binding = TB_BIND_COUNTERS, std430) buffer Counters { tb_gpu_counters counters; };
+layout(set = 0, binding = TB_BIND_BODY_PUSH, std430) buffer BodyPush { vec4 body_push[]; };
+layout(set = 0, binding = TB_BIND_BODY_CLAIM, std430) buffer BodyClaim { uint body_claim[]; };
+layout(set = 0, binding = TB_BIND_PAIRS, std430) buffer Pairs { uvec4 pairs[]; };
+layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_manifold manifolds[]; };
+layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
+layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()
@@ -29,6 +36,12 @@ uint body_thread_index()
 bool body_is(uint i, uint flags)
 {
     return (body_info[i].y & flags) == flags;
+}
+
+// A stage found the step abandoned (TB_ABORT_*): it must leave everything as it is.
+bool step_aborted()
+{
+    return counters.state.x != 0u;
 }
 
 #endif

@@ -58,6 +58,22 @@ static tb_result create_shape_buffer(tb_world* w, uint32_t capacity)
     return TB_OK;
 }
 
+/* The counters start at zero: no abort flag, no step done. */
+static tb_result create_counters(tb_world* w)
+{
+    tb_result r = tb_buffer_create(&w->memory, sizeof(tb_gpu_counters),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                   0, &w->counters_buffer);
+    if (!r) r = tb_transfer_begin(&w->transfer, 0);
+    if (r) return r;
+    vkCmdFillBuffer(w->transfer.cb, w->counters_buffer.buffer, 0, VK_WHOLE_SIZE, 0);
+    r = tb_transfer_end(&w->transfer);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    if (!r) tb_pipelines_bind(&w->pipelines, TB_BIND_COUNTERS, w->counters_buffer.buffer);
+    return r;
+}
+
 static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
                                     const tb_gpu_options* extra)
 {
@@ -75,6 +91,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (r) return r;
     tb_pipelines_bind(&w->pipelines, TB_BIND_PARAMS, w->params_buffer.buffer);
     r = create_shape_buffer(w, INITIAL_SHAPE_CAPACITY);
+    if (!r) r = create_counters(w);
     if (!r) r = tb_body_store_init(&w->store, &w->memory, &w->pipelines, &w->transfer,
                                    def->initial_body_capacity);
     for (uint32_t i = 0; i < TB_STAGE_COUNT && !r; i++)
@@ -124,6 +141,7 @@ void tb_world_destroy(tb_world* w)
         tb_body_store_destroy(&w->store);
         tb_buffer_destroy(&w->memory, &w->shape_buffer);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
+        tb_buffer_destroy(&w->memory, &w->counters_buffer);
         tb_transfer_destroy(&w->transfer);
         tb_pipelines_destroy(&w->pipelines);
         tb_memory_destroy(&w->memory);

@@ -53,6 +53,7 @@ struct tb_world {
     tb_body_store store;
     tb_buffer params_buffer;
     tb_gpu_params params;
+    tb_buffer counters_buffer;   ///< tb_gpu_counters, zero at creation
 
     tb_vec3 gravity;
     float max_rotation_per_step;

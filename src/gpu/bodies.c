@@ -32,20 +32,45 @@ static tb_result grow_mirror(tb_body_store* s, uint32_t capacity)
     return TB_OK;
 }
 
+#define SCRATCH_COUNT 2 /* push, claim */
+
+/* The solver's per-slot scratch of `capacity` slots: [0] push, [1] claim. */
+static tb_result create_scratch(tb_body_store* s, uint32_t capacity, tb_buffer scratch[SCRATCH_COUNT])
+{
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    tb_result r = tb_buffer_create(s->memory, 2 * capacity * ELEMENT, usage, 0, &scratch[0]);
+    if (!r) r = tb_buffer_create(s->memory, capacity * sizeof(uint32_t), usage, 0, &scratch[1]);
+    return r;
+}
+
+static void replace_scratch(tb_body_store* s, tb_buffer scratch[SCRATCH_COUNT])
+{
+    tb_buffer_destroy(s->memory, &s->push);
+    tb_buffer_destroy(s->memory, &s->claim);
+    s->push = scratch[0];
+    s->claim = scratch[1];
+    tb_pipelines_bind(s->pipelines, TB_BIND_BODY_PUSH, s->push.buffer);
+    tb_pipelines_bind(s->pipelines, TB_BIND_BODY_CLAIM, s->claim.buffer);
+}
+
 /* New GPU arrays of `capacity` slots holding the old contents, zero beyond them. */
 static tb_result grow_gpu(tb_body_store* s, tb_transfer* t, uint32_t capacity)
 {
-    tb_buffer fresh[TB_ARRAY_COUNT] = { 0 };
+    tb_buffer fresh[TB_ARRAY_COUNT] = { 0 }, scratch[SCRATCH_COUNT] = { 0 };
     tb_result r = TB_OK;
     for (int a = 0; a < TB_ARRAY_COUNT && !r; a++)
         r = tb_buffer_create(s->memory, capacity * ELEMENT,
                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                              VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &fresh[a]);
+    if (!r) r = create_scratch(s, capacity, scratch);
     if (!r) r = tb_transfer_begin(t, 0);
     if (r) {
         for (int a = 0; a < TB_ARRAY_COUNT; a++) tb_buffer_destroy(s->memory, &fresh[a]);
+        for (int a = 0; a < SCRATCH_COUNT; a++) tb_buffer_destroy(s->memory, &scratch[a]);
         return r;
     }
+    vkCmdFillBuffer(t->cb, scratch[0].buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(t->cb, scratch[1].buffer, 0, VK_WHOLE_SIZE, 0xffffffffu);
     VkDeviceSize old_bytes = s->capacity * ELEMENT;
     for (int a = 0; a < TB_ARRAY_COUNT; a++) {
         vkCmdFillBuffer(t->cb, fresh[a].buffer, old_bytes, VK_WHOLE_SIZE, 0);
@@ -63,6 +88,11 @@ static tb_result grow_gpu(tb_body_store* s, tb_transfer* t, uint32_t capacity)
             s->gpu[a] = fresh[a];
             tb_pipelines_bind(s->pipelines, TB_BIND_BODY_POS + (uint32_t)a, s->gpu[a].buffer);
         }
+    }
+    if (r) {
+        for (int a = 0; a < SCRATCH_COUNT; a++) tb_buffer_destroy(s->memory, &scratch[a]);
+    } else {
+        replace_scratch(s, scratch);
     }
     return r;
 }
@@ -100,6 +130,8 @@ void tb_body_store_destroy(tb_body_store* s)
         tb_buffer_destroy(s->memory, &s->gpu[a]);
         free(s->host[a]);
     }
+    tb_buffer_destroy(s->memory, &s->push);
+    tb_buffer_destroy(s->memory, &s->claim);
     free(s->dirty);
     free(s->dirty_slots);
     memset(s, 0, sizeof *s);

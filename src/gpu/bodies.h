@@ -5,7 +5,9 @@
  * uploads exactly the dirty runs. The GPU writes poses, velocities and AABBs during a step;
  * after a step those arrays of the mirror are stale until a read brings them back in one
  * download. Growth doubles every array on the GPU (a device-side copy keeps the contents)
- * and re-points the descriptor set, which makes the step graph record again.
+ * and re-points the descriptor set, which makes the step graph record again. The solver's
+ * per-slot scratch (push, claim) has no mirror and is not kept across growth: every step
+ * resets it before use.
  */
 #ifndef TB_BODIES_H
 #define TB_BODIES_H
@@ -31,6 +33,8 @@ typedef struct tb_body_store {
     uint32_t capacity;                    ///< slots the GPU arrays hold
     uint32_t slots;                       ///< slots in use, dead ones included (high-water)
     tb_buffer gpu[TB_ARRAY_COUNT];
+    tb_buffer push;                       ///< GPU only: split-impulse pseudo velocities, 2 vec4 a slot
+    tb_buffer claim;                      ///< GPU only: graph colouring claim, a uint a slot
     tb_gpu_vec4* host[TB_ARRAY_COUNT];    ///< mirror; TB_ARRAY_INFO holds tb_gpu_uvec4
     uint8_t* dirty;                       ///< per slot: bit a set when array a awaits upload
     uint32_t* dirty_slots;                ///< slots with any dirty bit, each listed once
