@@ -1,8 +1,15 @@
-/* Graph colouring of contact constraints on the GPU (solver/colour_*), driven alone: random
- * constraint graphs are written straight into the pair and manifold buffers, the colouring
- * passes run, and the result is checked against the batching property (no dynamic body
- * twice in a colour, every constraint once, offsets and dispatch arguments consistent) and
- * against a plain C run of the same rounds, which must give the very same colours. */
+/* Batching and the batched contact solve on the GPU (glsl/solver), driven alone.
+ *
+ * Colouring: random, lattice, star and chain constraint graphs are written straight into the
+ * pair and manifold buffers, the colouring passes run, and the result is checked against the
+ * batching property (no dynamic body twice in a colour, every constraint once, offsets and
+ * dispatch arguments consistent) and against a plain C run of the same rounds, which must give
+ * the very same colours.
+ *
+ * Solve: hand-made manifolds between a few bodies, one step of colouring, apply_forces,
+ * prepare, solve and integrate, compared with what one step of the contact model gives in
+ * closed form (resting impulse m g dt, bounce e v, speculative arrival, split-impulse lift,
+ * kinetic friction mu g dt, a stack's 3:2:1 impulses), bit-identical when repeated. */
 #include "harness.h"
 
 #include <stdio.h>
@@ -12,6 +19,8 @@
 #include "api/world.h"
 #include "gpu/solver.h"
 
+#define DT (1.0f / 60.0f)
+
 /* ---- a world with the solver's buffers bound -------------------------------------------- */
 
 typedef struct fixture {
@@ -20,6 +29,7 @@ typedef struct fixture {
     uint32_t bodies;          ///< body slots, [0, statics) static, the rest dynamic
     uint32_t statics;
     uint32_t capacity;        ///< pair capacity of one half
+    tb_body_id* ids;          ///< ids of the bodies, in slot order
     tb_buffer counters, pairs, manifolds, constraints, colour_list, claim, push;
 } fixture;
 
@@ -31,28 +41,21 @@ static tb_buffer host_buffer(tb_world* w, VkDeviceSize bytes, VkBufferUsageFlags
     return b;
 }
 
-/* `bodies` spheres, the first `statics` static; pair capacity `capacity` per half. */
-static void fixture_init(fixture* f, uint32_t bodies, uint32_t statics, uint32_t capacity)
+/* Bodies from `defs`, the first `statics` of them static; pair capacity `capacity` per half. */
+static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, uint32_t bodies,
+                              uint32_t statics, uint32_t capacity)
 {
     memset(f, 0, sizeof *f);
-    f->w = th_world_create(NULL);
+    f->w = w;
     f->bodies = bodies;
     f->statics = statics;
     f->capacity = capacity ? capacity : 1;
-    tb_shape_id sphere = th_sphere(f->w, 0.5f);
-    tb_body_def* defs = malloc(bodies * sizeof *defs);
-    tb_body_id* ids = malloc(bodies * sizeof *ids);
-    assert_true(defs && ids);
-    for (uint32_t i = 0; i < bodies; i++)
-        defs[i] = i < statics ? th_static_def(sphere, th_v3((float)i, 0, 0))
-                              : th_dynamic_def(sphere, th_v3((float)i, 2, 0));
-    th_assert_ok(tb_body_create_many(f->w, defs, bodies, ids));
-    free(defs);
-    free(ids);
-    th_assert_ok(tb_world_flush(f->w));
-    assert_int_equal(f->w->store.slots, bodies);
+    f->ids = malloc(bodies * sizeof *f->ids);
+    assert_non_null(f->ids);
+    th_assert_ok(tb_body_create_many(w, defs, bodies, f->ids));
+    th_assert_ok(tb_world_flush(w));
+    assert_int_equal(w->store.slots, bodies);
 
-    tb_world* w = f->w;
     VkDeviceSize cap = f->capacity;
     f->counters = host_buffer(w, sizeof(tb_gpu_counters), VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     f->pairs = host_buffer(w, 2 * cap * sizeof(tb_gpu_uvec4), 0);
@@ -61,6 +64,7 @@ static void fixture_init(fixture* f, uint32_t bodies, uint32_t statics, uint32_t
     f->colour_list = host_buffer(w, cap * sizeof(uint32_t), 0);
     f->claim = host_buffer(w, bodies * sizeof(uint32_t), 0);
     f->push = host_buffer(w, 2 * bodies * sizeof(tb_gpu_vec4), 0);
+    memset(f->claim.mapped, 0xff, bodies * sizeof(uint32_t));
     tb_pipelines* p = &w->pipelines;
     tb_pipelines_bind(p, TB_BIND_COUNTERS, f->counters.buffer);
     tb_pipelines_bind(p, TB_BIND_PAIRS, f->pairs.buffer);
@@ -73,6 +77,20 @@ static void fixture_init(fixture* f, uint32_t bodies, uint32_t statics, uint32_t
     th_assert_ok(tb_solver_init(&f->solver, p));
 }
 
+/* `bodies` unit spheres, the first `statics` static. */
+static void fixture_init(fixture* f, uint32_t bodies, uint32_t statics, uint32_t capacity)
+{
+    tb_world* w = th_world_create(NULL);
+    tb_shape_id sphere = th_sphere(w, 0.5f);
+    tb_body_def* defs = malloc(bodies * sizeof *defs);
+    assert_non_null(defs);
+    for (uint32_t i = 0; i < bodies; i++)
+        defs[i] = i < statics ? th_static_def(sphere, th_v3((float)i, 0, 0))
+                              : th_dynamic_def(sphere, th_v3((float)i, 2, 0));
+    fixture_init_defs(f, w, defs, bodies, statics, capacity);
+    free(defs);
+}
+
 static void fixture_destroy(fixture* f)
 {
     tb_world* w = f->w;
@@ -80,6 +98,7 @@ static void fixture_destroy(fixture* f)
     tb_buffer* all[] = { &f->counters, &f->pairs, &f->manifolds, &f->constraints,
                          &f->colour_list, &f->claim, &f->push };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) tb_buffer_destroy(&w->memory, all[i]);
+    free(f->ids);
     th_world_destroy(w);
 }
 
@@ -101,18 +120,18 @@ static void reset_counters(fixture* f, uint32_t pairs, uint32_t parity)
     c->state = (tb_gpu_uvec4){ 0, parity, pairs, 0 };
 }
 
-/* Record apply_forces (it resets the claims and push), then `list`, and run them. */
+/* A pass of a world shader dispatched per body; the caller destroys its pipeline. */
+static tb_pass per_body_pass(fixture* f, const char* shader)
+{
+    tb_pass pass = { .rule = TB_DISPATCH_PER_BODY };
+    th_assert_ok(tb_pipeline_create(&f->w->pipelines, shader, TB_WORKGROUP_SIZE, &pass.pipeline));
+    return pass;
+}
+
+/* Write the params, record `list` and run it. */
 static void run_passes(fixture* f, const tb_gpu_params* params, const tb_pass_list* list)
 {
     tb_world* w = f->w;
-    VkPipeline forces;
-    th_assert_ok(tb_pipeline_create(&w->pipelines, "integrate/apply_forces", TB_WORKGROUP_SIZE, &forces));
-    tb_pass_list all = { 0 };
-    tb_pass first = { .pipeline = forces, .rule = TB_DISPATCH_PER_BODY };
-    th_assert_ok(tb_pass_list_add(&all, &w->diag, &first));
-    for (uint32_t i = 0; i < list->count; i++)
-        th_assert_ok(tb_pass_list_add(&all, &w->diag, &list->passes[i]));
-
     VkCommandBuffer cb;
     th_assert_ok(tb_gpu_command_buffer(&w->gpu, &cb));
     VkCommandBufferBeginInfo begin = { .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
@@ -128,23 +147,24 @@ static void run_passes(fixture* f, const tb_gpu_params* params, const tb_pass_li
                          0, 1, &upload, 0, NULL, 0, NULL);
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, w->pipelines.layout, 0, 1,
                             &w->pipelines.set, 0, NULL);
-    tb_passes_record(cb, w->pipelines.layout, all.passes, all.count, w->params_buffer.buffer);
+    tb_passes_record(cb, w->pipelines.layout, list->passes, list->count, w->params_buffer.buffer);
     VkMemoryBarrier readback = { .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                  .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
-                                 .dstAccessMask = VK_ACCESS_HOST_READ_BIT };
-    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                                 .dstAccessMask = VK_ACCESS_HOST_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT };
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
                          &readback, 0, NULL, 0, NULL);
     vkEndCommandBuffer(cb);
     th_assert_ok(tb_gpu_submit_wait(&w->gpu, &cb, 1));
     vkFreeCommandBuffers(w->gpu.device, w->gpu.command_pool, 1, &cb);
-    vkDestroyPipeline(w->gpu.device, forces, NULL);
-    tb_pass_list_free(&all);
+    /* The passes moved bodies behind the world's back: its mirror must be read again. */
+    tb_body_store_stepped(&w->store);
 }
 
 static tb_gpu_params colouring_params(fixture* f, uint32_t rounds)
 {
     tb_gpu_params p = f->w->params;
-    p.gravity.w = 1.0f / 60.0f;
+    p.gravity.w = DT;
     p.counts.x = f->bodies;
     p.capacity = (tb_gpu_uvec4){ f->capacity, 0, rounds, 1 };
     return p;
@@ -160,7 +180,15 @@ static void run_colouring(fixture* f, uint32_t pairs, uint32_t parity, uint32_t 
     uint32_t last = rounds == TB_MAX_COLOURS;
     assert_int_equal(list.count, 2 * ((rounds - last) * sub_rounds + last) + 1);
     tb_gpu_params params = colouring_params(f, rounds);
-    run_passes(f, &params, &list);
+    /* apply_forces first: it resets the claims. */
+    tb_pass forces = per_body_pass(f, "integrate/apply_forces");
+    tb_pass_list all = { 0 };
+    th_assert_ok(tb_pass_list_add(&all, &f->w->diag, &forces));
+    for (uint32_t i = 0; i < list.count; i++)
+        th_assert_ok(tb_pass_list_add(&all, &f->w->diag, &list.passes[i]));
+    run_passes(f, &params, &all);
+    vkDestroyPipeline(f->w->gpu.device, forces.pipeline, NULL);
+    tb_pass_list_free(&all);
     tb_pass_list_free(&list);
 }
 
@@ -581,6 +609,295 @@ static void test_chain(void** state)
     fixture_destroy(&f);
 }
 
+/* ---- the batched solve ------------------------------------------------------------------ */
+
+#define SLOP 0.005f
+#define RECOVERY 0.2f
+#define THRESHOLD 1.0f
+
+/* The ground: a static box whose top face is the plane y = 0.5. */
+static tb_body_def ground_def(tb_world* w)
+{
+    return th_static_def(th_box(w, th_v3(5, 0.5f, 5)), th_v3(0, 0, 0));
+}
+
+/* Pair p of half `parity` joins a and b; normal from a to b; points (xyz, separation). */
+static void set_contact(fixture* f, uint32_t parity, uint32_t p, uint32_t a, uint32_t b,
+                        tb_vec3 n, float friction, float restitution, uint32_t count,
+                        const tb_gpu_vec4* points)
+{
+    uint32_t at = parity * f->capacity + p, e;
+    memcpy(&e, &restitution, sizeof e);
+    pairs_of(f)[at] = (tb_gpu_uvec4){ a, b, TB_NO_COLOUR, 0 };
+    tb_gpu_manifold* m = &manifolds_of(f)[at];
+    memset(m, 0, sizeof *m);
+    m->normal = (tb_gpu_vec4){ n.x, n.y, n.z, friction };
+    m->info = (tb_gpu_uvec4){ count, a, b, e };
+    for (uint32_t k = 0; k < count; k++) m->point[k] = points[k];
+}
+
+/* The solver's part of a step on the pairs written: colouring, apply_forces, prepare, solve,
+ * integrate. apply_forces runs after the colouring so that a step abandoned for colours
+ * leaves the bodies untouched. */
+static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t rounds,
+                        uint32_t iterations)
+{
+    for (uint32_t p = 0; p < pairs; p++) pairs_of(f)[parity * f->capacity + p].z = TB_NO_COLOUR;
+    reset_counters(f, pairs, parity);
+    tb_pass forces = per_body_pass(f, "integrate/apply_forces");
+    tb_pass integrate = per_body_pass(f, "integrate/integrate");
+    tb_pass_list list = { 0 };
+    VkBuffer counters = f->counters.buffer;
+    th_assert_ok(tb_solver_record_colouring(&f->solver, &list, counters, rounds, TB_SOLVER_SUB_ROUNDS));
+    th_assert_ok(tb_pass_list_add(&list, &f->w->diag, &forces));
+    th_assert_ok(tb_solver_record_solve(&f->solver, &list, counters, rounds, iterations));
+    th_assert_ok(tb_pass_list_add(&list, &f->w->diag, &integrate));
+    tb_gpu_params params = colouring_params(f, rounds);
+    params.capacity.w = iterations;
+    params.contact = (tb_gpu_vec4){ 0.02f, THRESHOLD, SLOP, RECOVERY };
+    run_passes(f, &params, &list);
+    vkDestroyPipeline(f->w->gpu.device, forces.pipeline, NULL);
+    vkDestroyPipeline(f->w->gpu.device, integrate.pipeline, NULL);
+    tb_pass_list_free(&list);
+}
+
+static float mass_of(const fixture* f, uint32_t slot)
+{
+    return f->w->bodies[slot].mass;
+}
+
+static tb_vec3 velocity_of(fixture* f, uint32_t slot)
+{
+    tb_vec3 v, w;
+    th_assert_ok(tb_body_get_velocity(f->w, f->ids[slot], &v, &w));
+    return v;
+}
+
+static tb_vec3 spin_of(fixture* f, uint32_t slot)
+{
+    tb_vec3 v, w;
+    th_assert_ok(tb_body_get_velocity(f->w, f->ids[slot], &v, &w));
+    return w;
+}
+
+static tb_vec3 position_of(fixture* f, uint32_t slot)
+{
+    tb_vec3 x;
+    th_read_pose(f->w, f->ids[slot], &x, NULL);
+    return x;
+}
+
+static tb_gpu_vec4 impulse_of(fixture* f, uint32_t parity, uint32_t p, uint32_t k)
+{
+    return manifolds_of(f)[parity * f->capacity + p].impulse[k];
+}
+
+/* A unit sphere resting on the ground, the pair in either order: one step's normal impulse
+ * is m g dt and the sphere keeps still; the next step, warm started, needs one iteration. */
+static void test_solve_resting_sphere(void** state)
+{
+    (void)state;
+    for (uint32_t flip = 0; flip < 2; flip++) {
+        fixture f;
+        tb_world* w = th_world_create(NULL);
+        tb_body_def defs[2] = { ground_def(w), th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 1, 0)) };
+        fixture_init_defs(&f, w, defs, 2, 1, 4);
+        double g = -tb_world_get_gravity(w).y, m = mass_of(&f, 1);
+        tb_gpu_vec4 point = { 0, 0.5f, 0, 0 };
+        set_contact(&f, flip, 0, flip, 1 - flip, th_v3(0, flip ? -1.0f : 1.0f, 0), 0.5f, 0, 1, &point);
+        solver_step(&f, 1, flip, 4, 8);
+        th_assert_near(velocity_of(&f, 1).y, 0, 1e-6, 0);
+        th_assert_near(impulse_of(&f, flip, 0, 0).x, m * g * DT, 1e-7, 1e-5);
+        th_assert_near(position_of(&f, 1).y, 1.0, 1e-6, 0);
+        solver_step(&f, 1, flip, 4, 1);
+        th_assert_near(velocity_of(&f, 1).y, 0, 1e-6, 0);
+        th_assert_near(impulse_of(&f, flip, 0, 0).x, m * g * DT, 1e-7, 1e-5);
+        fixture_destroy(&f);
+    }
+}
+
+/* One sphere over the ground with velocity v (y only) and one contact point of separation s. */
+static void sphere_contact(fixture* f, float height, float vy, float separation, float restitution)
+{
+    tb_world* w = th_world_create(NULL);
+    tb_body_def defs[2] = { ground_def(w), th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, height, 0)) };
+    defs[1].linear_velocity = th_v3(0, vy, 0);
+    fixture_init_defs(f, w, defs, 2, 1, 4);
+    tb_gpu_vec4 point = { 0, 0.5f + 0.5f * separation, 0, separation };
+    set_contact(f, 0, 0, 0, 1, th_v3(0, 1, 0), 0.5f, restitution, 1, &point);
+}
+
+/* Restitution: above the threshold the sphere leaves at e times the approach speed it had
+ * after gravity; below it, it stops. */
+static void test_solve_restitution(void** state)
+{
+    (void)state;
+    const float speeds[] = { 5.0f, 0.5f };
+    for (int i = 0; i < 2; i++) {
+        fixture f;
+        sphere_contact(&f, 1.0f, -speeds[i], 0, 0.5f);
+        double g = -tb_world_get_gravity(f.w).y, approach = speeds[i] + g * DT;
+        solver_step(&f, 1, 0, 2, 8);
+        double expected = approach > THRESHOLD ? 0.5 * approach : 0;
+        th_assert_near(velocity_of(&f, 1).y, expected, 1e-5, 1e-5);
+        th_assert_near(position_of(&f, 1).y, 1.0 + expected * DT, 1e-5, 0);
+        fixture_destroy(&f);
+    }
+}
+
+/* Speculative contact 0.1 m apart: a slow fall does not reach the ground within the step and
+ * is left alone; a fast one is slowed to arrive exactly (no bounce from a distance, e = 0). */
+static void test_solve_speculative(void** state)
+{
+    (void)state;
+    const float speeds[] = { 3.0f, 12.0f };
+    for (int i = 0; i < 2; i++) {
+        fixture f;
+        sphere_contact(&f, 1.1f, -speeds[i], 0.1f, 0);
+        double g = -tb_world_get_gravity(f.w).y, v = -(speeds[i] + g * DT);
+        solver_step(&f, 1, 0, 2, 8);
+        double expected = v * DT > -0.1 ? v : -0.1 / DT;
+        th_assert_near(velocity_of(&f, 1).y, expected, 1e-4, 1e-5);
+        th_assert_near(position_of(&f, 1).y, 1.1 + expected * DT, 1e-5, 0);
+        if (i == 1) th_assert_near(position_of(&f, 1).y, 1.0, 1e-5, 0);
+        fixture_destroy(&f);
+    }
+}
+
+/* 10 cm of penetration: split impulses lift the sphere by the recovery rate times the depth
+ * beyond the slop, while its stored velocity stays zero (no energy from recovery). */
+static void test_solve_split_impulse(void** state)
+{
+    (void)state;
+    fixture f;
+    sphere_contact(&f, 0.9f, 0, -0.1f, 0.8f);
+    solver_step(&f, 1, 0, 2, 8);
+    th_assert_near(velocity_of(&f, 1).y, 0, 1e-5, 0);
+    th_assert_near(position_of(&f, 1).y, 0.9 + RECOVERY * (0.1 - SLOP), 1e-5, 0);
+    assert_true(impulse_of(&f, 0, 0, 0).w > 0);
+    fixture_destroy(&f);
+}
+
+/* A unit box sliding on the ground on its four bottom corners: kinetic friction takes
+ * mu g dt off its speed in a step; a slower box sticks. */
+static void test_solve_friction(void** state)
+{
+    (void)state;
+    const float speeds[] = { 2.0f, 0.05f };
+    for (int i = 0; i < 2; i++) {
+        fixture f;
+        tb_world* w = th_world_create(NULL);
+        tb_body_def defs[2] = { ground_def(w), th_dynamic_def(th_box(w, th_v3(0.5f, 0.5f, 0.5f)), th_v3(0, 1, 0)) };
+        defs[1].linear_velocity = th_v3(speeds[i], 0, 0);
+        fixture_init_defs(&f, w, defs, 2, 1, 4);
+        tb_gpu_vec4 corners[4];
+        for (int k = 0; k < 4; k++)
+            corners[k] = (tb_gpu_vec4){ k & 1 ? 0.5f : -0.5f, 0.5f, k & 2 ? 0.5f : -0.5f, 0 };
+        const float mu = 0.5f;
+        set_contact(&f, 0, 0, 0, 1, th_v3(0, 1, 0), mu, 0, 4, corners);
+        double g = -tb_world_get_gravity(w).y;
+        solver_step(&f, 1, 0, 2, 30);
+        tb_vec3 v = velocity_of(&f, 1), spin = spin_of(&f, 1);
+        double expected = speeds[i] > mu * g * DT ? speeds[i] - mu * g * DT : 0;
+        th_assert_near(v.x, expected, 1e-3, 1e-3);
+        th_assert_near(v.y, 0, 1e-3, 0);
+        th_assert_near(v.z, 0, 1e-6, 0);
+        th_assert_near(spin.x, 0, 1e-3, 0);
+        th_assert_near(spin.z, 0, 2e-3, 0);
+        double normal = 0;
+        for (int k = 0; k < 4; k++) normal += impulse_of(&f, 0, 0, (uint32_t)k).x;
+        th_assert_near(normal, mass_of(&f, 1) * g * DT, 0, 2e-3);
+        fixture_destroy(&f);
+    }
+}
+
+/* Three spheres stacked on the ground: two colours alternate over the chain; the contacts
+ * carry 3, 2 and 1 times m g dt. The same step run twice gives bit-identical results. */
+static void stack_step(fixture* f, uint32_t iterations)
+{
+    for (uint32_t i = 1; i <= 3; i++) {
+        th_assert_ok(tb_body_set_pose(f->w, f->ids[i], th_v3(0, (float)i, 0), th_q(0, 0, 0, 1)));
+        th_assert_ok(tb_body_set_velocity(f->w, f->ids[i], th_v3(0, 0, 0), th_v3(0, 0, 0)));
+    }
+    th_assert_ok(tb_world_flush(f->w));
+    for (uint32_t p = 0; p < 3; p++) {
+        tb_gpu_vec4 point = { 0, 0.5f + (float)p, 0, 0 };
+        set_contact(f, 1, p, p, p + 1, th_v3(0, 1, 0), 0.5f, 0, 1, &point);
+    }
+    solver_step(f, 3, 1, 4, iterations);
+}
+
+static void test_solve_stack_deterministic(void** state)
+{
+    (void)state;
+    fixture f;
+    tb_world* w = th_world_create(NULL);
+    tb_shape_id ball = th_sphere(w, 0.5f);
+    tb_body_def defs[4] = { ground_def(w) };
+    for (int i = 1; i <= 3; i++) defs[i] = th_dynamic_def(ball, th_v3(0, (float)i, 0));
+    fixture_init_defs(&f, w, defs, 4, 1, 4);
+    double g = -tb_world_get_gravity(w).y, mgdt = mass_of(&f, 1) * g * DT;
+    stack_step(&f, 40);
+    assert_int_equal(counters_of(&f)->solver.x, 2);
+    for (uint32_t p = 0; p < 3; p++) th_assert_near(impulse_of(&f, 1, p, 0).x, (3 - p) * mgdt, 0, 1e-3);
+    tb_vec3 first[4];
+    tb_gpu_manifold manifolds[3];
+    for (uint32_t i = 1; i <= 3; i++) {
+        th_assert_near(velocity_of(&f, i).y, 0, 1e-4, 0);
+        first[i] = position_of(&f, i);
+    }
+    memcpy(manifolds, &manifolds_of(&f)[f.capacity], sizeof manifolds);
+    stack_step(&f, 40);
+    for (uint32_t i = 1; i <= 3; i++) {
+        tb_vec3 x = position_of(&f, i);
+        assert_memory_equal(&x, &first[i], sizeof x);
+    }
+    assert_memory_equal(manifolds, &manifolds_of(&f)[f.capacity], sizeof manifolds);
+    fixture_destroy(&f);
+}
+
+/* A box held up by more static posts than there are colours: with every round recorded the
+ * leftovers are solved by the tail, in order, and the box is held still. With fewer rounds
+ * the step is abandoned and the box is left exactly as it was. */
+static void test_solve_tail_and_abort(void** state)
+{
+    (void)state;
+    enum { POSTS = 70 };
+    const uint32_t rounds[] = { TB_MAX_COLOURS, 8 };
+    for (int i = 0; i < 2; i++) {
+        fixture f;
+        tb_world* w = th_world_create(NULL);
+        tb_shape_id post = th_sphere(w, 0.05f);
+        tb_body_def defs[POSTS + 1];
+        for (int k = 0; k < POSTS; k++)
+            defs[k] = th_static_def(post, th_v3(-0.45f + 0.9f * (k % 10) / 9, 0.45f, -0.45f + 0.9f * (k / 10) / 6));
+        defs[POSTS] = th_dynamic_def(th_box(w, th_v3(0.5f, 0.5f, 0.5f)), th_v3(0, 1, 0));
+        fixture_init_defs(&f, w, defs, POSTS + 1, POSTS, POSTS);
+        for (uint32_t k = 0; k < POSTS; k++) {
+            tb_gpu_vec4 point = { defs[k].position.x, 0.5f, defs[k].position.z, 0 };
+            set_contact(&f, 0, k, k, POSTS, th_v3(0, 1, 0), 0.5f, 0, 1, &point);
+        }
+        double g = -tb_world_get_gravity(w).y;
+        solver_step(&f, POSTS, 0, rounds[i], 30);
+        const tb_gpu_counters* c = counters_of(&f);
+        tb_vec3 v = velocity_of(&f, POSTS);
+        if (rounds[i] == TB_MAX_COLOURS) {
+            assert_int_equal(c->state.x, 0);
+            assert_int_equal(c->solver.y, POSTS - TB_MAX_COLOURS);
+            double normal = 0;
+            for (uint32_t k = 0; k < POSTS; k++) normal += impulse_of(&f, 0, k, 0).x;
+            th_assert_near(normal, mass_of(&f, POSTS) * g * DT, 0, 1e-3);
+            th_assert_near(v.y, 0, 1e-4, 0);
+        } else {
+            assert_int_equal(c->state.x, TB_ABORT_COLOURS);
+            assert_true(v.x == 0 && v.y == 0 && v.z == 0);
+            tb_vec3 x = position_of(&f, POSTS);
+            assert_true(x.x == 0 && x.y == 1 && x.z == 0);
+        }
+        fixture_destroy(&f);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -591,6 +908,13 @@ int main(void)
         cmocka_unit_test(test_star),
         cmocka_unit_test(test_static_bodies_do_not_block),
         cmocka_unit_test(test_chain),
+        cmocka_unit_test(test_solve_resting_sphere),
+        cmocka_unit_test(test_solve_restitution),
+        cmocka_unit_test(test_solve_speculative),
+        cmocka_unit_test(test_solve_split_impulse),
+        cmocka_unit_test(test_solve_friction),
+        cmocka_unit_test(test_solve_stack_deterministic),
+        cmocka_unit_test(test_solve_tail_and_abort),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

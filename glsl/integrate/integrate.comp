@@ -6,6 +6,8 @@
 // For tiny angles sin(a/2)/|w| is replaced by its Taylor series to keep precision.
 // The pose moves with the velocities plus the solver's split-impulse push (body_push), which
 // recovers penetration; the stored velocities stay without it, so recovery adds no energy.
+// Every slot's colouring claim is released here, even in an abandoned step: the next step's
+// colouring (or this step's redo) then starts clean whether or not apply_forces runs first.
 #include "world.glsl"
 #include "quat.glsl"
 
@@ -31,9 +33,9 @@ vec4 rotation_of(vec3 w, float dt, float max_angle)
 void main()
 {
     uint i = body_thread_index();
-    if (i >= params.counts.x || step_aborted() ||
-        !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC))
-        return;
+    if (i >= params.counts.x) return;
+    body_claim[i] = 0xffffffffu;
+    if (step_aborted() || !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
     float dt = params.gravity.w;
     vec4 p = body_pos[i];
     vec3 v = body_linvel[i].xyz + body_push[2u * i].xyz;

@@ -7,8 +7,9 @@
 // Real velocity target of a point (relative normal velocity vn = (vb - va) . n after the solve):
 // - touching or penetrating (s <= 0): vn >= 0, no positional bias (recovery is split, below);
 // - speculative (s > 0): the gap may close within the step, vn >= -s / dt;
-// - restitution: when the approach speed before the solve exceeds params.contact.y and the
-//   point reaches the surface within the step, vn >= -e * vn_before.
+// - restitution: when e > 0, the approach speed before the solve exceeds params.contact.y and
+//   the point reaches the surface within the step, vn >= -e * vn_before (a speculative point
+//   thus bounces up to s early, at most the contact margin; with e = 0 it lands exactly).
 // Split target: params.contact.w * max(-(s + slop), 0) / dt, slop = params.contact.z.
 #include "colouring.glsl"
 #include "bodies.glsl"
@@ -21,8 +22,8 @@ vec3 point_velocity(solver_body b, vec3 r)
 float velocity_target(float s, float vn, float restitution, float dt)
 {
     float target = s > 0.0 ? -s / dt : 0.0;
-    if (-vn > params.contact.y && -vn * dt >= s) target = max(target, -restitution * vn);
-    return target;
+    bool bounces = restitution > 0.0 && -vn > params.contact.y && -vn * dt >= s;
+    return bounces ? max(target, -restitution * vn) : target;
 }
 
 void main()
