@@ -11,6 +11,7 @@
 
 #define DT (1.0f / 60.0f)
 #define G 9.81
+#define PI 3.14159265358979323846
 
 static tb_world* world_with_gravity(void)
 {
@@ -57,7 +58,8 @@ static void test_sphere_rests_on_plane(void** state)
     tb_contact c[8];
     th_assert_ok(tb_world_read_contacts(w, c, 8, &n));
     assert_int_equal(n, 1);
-    th_assert_near(c[0].normal_impulse, 1000.0 * 4.0 / 3.0 * M_PI * 0.125 * G * DT, 0, 0.02);
+    assert_int_equal(th_stats(w).contact_count, 1);
+    th_assert_near(c[0].normal_impulse, 1000.0 * 4.0 / 3.0 * PI * 0.125 * G * DT, 0, 0.02);
     th_world_destroy(w);
 }
 
@@ -105,7 +107,7 @@ static incline make_incline(double degrees)
 {
     incline s;
     s.w = world_with_gravity();
-    double t = degrees * M_PI / 180.0;
+    double t = degrees * PI / 180.0;
     tb_quat q = th_quat_axis_angle(th_v3(0, 0, 1), t);
     tb_shape_def sd = tb_default_shape_def();
     sd.friction = 0.5f;
@@ -147,7 +149,7 @@ static void test_incline_sticks_below_atan_mu(void** state)
 static void test_incline_slides_above_atan_mu(void** state)
 {
     (void)state;
-    double t = 35.0 * M_PI / 180.0;
+    double t = 35.0 * PI / 180.0;
     incline s = make_incline(35.0);
     th_assert_ok(tb_world_step_n(s.w, DT, 30));
     double v1 = along(velocity_of(s.w, s.box), s.down);
@@ -175,9 +177,9 @@ static pile_result pour_spheres(uint32_t steps)
     for (uint32_t i = 0; i < checks.count; i++) {
         const char* k = checks.items[i].key;
         double v = checks.items[i].value;
+        print_message("  %s %g\n", k, v);
         if (!strcmp(k, "nan") || !strcmp(k, "escaped")) assert_true(v == 0);
         if (!strcmp(k, "max_penetration")) assert_true(v < 0.01);
-        print_message("  %s %g\n", k, v);
     }
     pile_result r;
     const tb_body_id* ids = scene_body_ids(inst, &r.n);

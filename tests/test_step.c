@@ -293,11 +293,17 @@ static void test_stats(void** state)
     assert_true(st.records >= 1);
     assert_true(st.body_capacity >= 50);
     assert_in_range(st.stage_count, 3, TB_MAX_STAGES);
-    int fa = stage_index(&st, "integrate/apply_forces");
-    int in = stage_index(&st, "integrate/integrate");
-    int ab = stage_index(&st, "broadphase/world_aabb");
-    assert_true(fa >= 0 && in >= 0 && ab >= 0);
-    assert_true(fa < in && in < ab); /* listed in step order */
+    /* Listed in step order (DESIGN.md §1). */
+    const char* order[] = { "step/begin", "broadphase/world_aabb", "broadphase/grid",
+                            "narrowphase/contacts", "solver/colour", "solver/prepare",
+                            "integrate/apply_forces", "solver/solve", "integrate/integrate",
+                            "step/end" };
+    int last = -1;
+    for (size_t i = 0; i < sizeof order / sizeof order[0]; i++) {
+        int at = stage_index(&st, order[i]);
+        if (at <= last) fail_msg("stage %s missing or out of order", order[i]);
+        last = at;
+    }
     assert_true(isfinite(st.gpu_ms) && st.gpu_ms >= 0);
     for (uint32_t i = 0; i < st.stage_count; i++)
         assert_true(isfinite(st.stages[i].ms) && st.stages[i].ms >= 0);

@@ -29,7 +29,9 @@ static int setup(void** state)
     static fixture f;
     memset(&f, 0, sizeof f);
     f.diag.log = quiet;
-    tb_gpu_options options = { NULL, 1 };
+    tb_gpu_options options;
+    memset(&options, 0, sizeof options);
+    options.validation = 1;
     assert_int_equal(tb_gpu_create(&f.gpu, &options, &f.diag), TB_OK);
     assert_int_equal(tb_memory_init(&f.memory, &f.gpu), TB_OK);
     assert_int_equal(tb_gpu_command_buffer(&f.gpu, &f.cb), TB_OK);

@@ -76,12 +76,6 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 #define TB_MAX_MANIFOLD_POINTS  4
 
-/* Stage ids: the order of the step. Names in src/gpu/stages.c match the shader paths. */
-#define TB_STAGE_APPLY_FORCES   0  /* integrate/apply_forces: gravity and damping -> velocity */
-#define TB_STAGE_INTEGRATE      1  /* integrate/integrate: velocity -> position, orientation */
-#define TB_STAGE_WORLD_AABB     2  /* broadphase/world_aabb: pose + shape -> world AABB */
-#define TB_STAGE_COUNT          3
-
 /* tb_gpu_body info.y */
 #define TB_BODY_FLAG_ALIVE      TB_U(1)
 #define TB_BODY_FLAG_DYNAMIC    TB_U(2)

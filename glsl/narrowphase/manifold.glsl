@@ -83,18 +83,27 @@ np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
 
 // The normal and friction impulses last step's point of the same feature ended with; the
 // split impulse corrects position errors of one step only, so it starts from 0.
-vec4 np_warm_impulse(np_target t, uint feature)
+// Features can be ambiguous where corners of the two shapes coincide (equal boxes stacked
+// exactly): a tiny turn relabels the same point. A point no key matches therefore takes
+// the impulse of last step's nearest point within the contact margin, so a resting stack
+// keeps its impulses.
+vec4 np_warm_impulse(np_target t, uint feature, vec3 point)
 {
-    for (uint j = 0u; j < t.prev_count; j++)
+    uint nearest = NP_NONE;
+    float best = params.contact.x * params.contact.x;
+    for (uint j = 0u; j < t.prev_count; j++) {
         if (t.prev_features[j] == feature) return vec4(manifolds[t.prev].impulse[j].xyz, 0.0);
-    return vec4(0.0);
+        vec3 d = manifolds[t.prev].point[j].xyz - point;
+        if (dot(d, d) <= best) { best = dot(d, d); nearest = j; }
+    }
+    return nearest == NP_NONE ? vec4(0.0) : vec4(manifolds[t.prev].impulse[nearest].xyz, 0.0);
 }
 
 // Point k: world point midway between the surfaces, separation along the normal.
 void np_emit(np_target t, uint k, vec3 point, float separation, uint feature)
 {
     manifolds[t.slot].point[k] = vec4(point, separation);
-    manifolds[t.slot].impulse[k] = np_warm_impulse(t, feature);
+    manifolds[t.slot].impulse[k] = np_warm_impulse(t, feature, point);
     manifolds[t.slot].feature[k] = feature;
 }
 

@@ -5,8 +5,8 @@
 // Colouring, claim pass of round r = push.args.x, sub-round s = push.args.y (see
 // colouring.glsl): every uncoloured constraint claims its dynamic bodies, unless one of them
 // was taken in an earlier sub-round of this round. Per pair, counters.pair_dispatch.
-// Round 0 also counts the step's constraints into counters.solver.y and their points into
-// counters.solver.w (one atomic per subgroup). In the first sub-round the first thread writes
+// Round 0 also counts the step's constraints into counters.solver.y (one atomic per
+// subgroup; the narrowphase counted their points). In the first sub-round the first thread writes
 // where colour r starts in the colour list: every earlier round is complete by now.
 #include "colouring.glsl"
 
@@ -43,10 +43,6 @@ void main()
     }
     if (round == 0u && sub_round == 0u) {
         uint constraints = subgroupAdd(points > 0u ? 1u : 0u);
-        uint point_total = subgroupAdd(points);
-        if (subgroupElect() && constraints > 0u) {
-            atomicAdd(counters.solver.y, constraints);
-            atomicAdd(counters.solver.w, point_total);
-        }
+        if (subgroupElect() && constraints > 0u) atomicAdd(counters.solver.y, constraints);
     }
 }

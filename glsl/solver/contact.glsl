@@ -34,9 +34,31 @@ vec3 relative_push(solver_body a, solver_body b, vec3 ra, vec3 rb)
     return b.pv + cross(b.pw, rb) - a.pv - cross(a.pw, ra);
 }
 
-// Solve pair p of this step's half. In the first iteration the warm-start impulses stored in
-// the manifold are applied first; the split impulse starts from zero every step.
-void solve_contact(uint p, bool first_iteration)
+// Warm start of pair p: apply the impulses its points ended the last step with (the
+// narrowphase copied them into this step's manifold). Every constraint is warm-started in a
+// sweep of its own before any is solved: a constraint solved while a neighbour's warm start
+// is still missing sees that neighbour falling, and a stack then sinks at a steady speed.
+// The split impulse starts from zero every step.
+void warm_start_contact(uint p)
+{
+    uint at = pair_half_base() + p;
+    uvec4 pair = pairs[at];
+    uint count = min(manifolds[at].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+    vec3 n = manifolds[at].normal.xyz;
+    tb_gpu_constraint c = constraints[p];
+    solver_body a = solver_body_load(pair.x), b = solver_body_load(pair.y);
+    for (uint k = 0u; k < count; k++) {
+        vec4 impulse = manifolds[at].impulse[k];
+        vec3 j = n * impulse.x + c.tangent1.xyz * impulse.y + c.tangent2.xyz * impulse.z;
+        apply_impulse(a, b, c.p[k].ra.xyz, c.p[k].rb.xyz, j);
+        manifolds[at].impulse[k].w = 0.0;
+    }
+    solver_body_store(pair.x, a);
+    solver_body_store(pair.y, b);
+}
+
+// One projected Gauss-Seidel pass over pair p of this step's half.
+void solve_contact(uint p)
 {
     uint at = pair_half_base() + p;
     uvec4 pair = pairs[at];
@@ -47,14 +69,7 @@ void solve_contact(uint p, bool first_iteration)
     float friction = c.tangent1.w;
     solver_body a = solver_body_load(pair.x), b = solver_body_load(pair.y);
     vec4 impulse[TB_MAX_MANIFOLD_POINTS];
-    for (uint k = 0u; k < count; k++) {
-        impulse[k] = manifolds[at].impulse[k];
-        if (first_iteration) {
-            impulse[k].w = 0.0;
-            vec3 j = n * impulse[k].x + t1 * impulse[k].y + t2 * impulse[k].z;
-            apply_impulse(a, b, c.p[k].ra.xyz, c.p[k].rb.xyz, j);
-        }
-    }
+    for (uint k = 0u; k < count; k++) impulse[k] = manifolds[at].impulse[k];
     for (uint k = 0u; k < count; k++) {
         vec3 ra = c.p[k].ra.xyz, rb = c.p[k].rb.xyz;
         float mass = c.p[k].ra.w;

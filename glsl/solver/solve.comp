@@ -14,7 +14,8 @@
 // relative normal velocity to its target (0 at rest, -e * vn for a bounce, -s / dt for a
 // speculative point s apart); then the two friction impulses, accumulated and clamped
 // together to a circular cone of radius mu * normal impulse (no preferred direction, unlike
-// a box per tangent). The first iteration applies the previous step's impulses (warm start).
+// a box per tangent). A sweep with push.args.z = 1 before the first iteration applies the
+// previous step's impulses (warm start) to every constraint.
 //
 // Penetration is recovered by split impulses: a second accumulated normal impulse
 // (impulse.w) drives pseudo velocities (body_push) towards a recovery rate; integrate moves
@@ -29,5 +30,7 @@ void main()
     uint colour = push.args.x;
     uint i = pair_thread_index();
     if (colour >= TB_MAX_COLOURS || i >= counters.colour[colour].x) return;
-    solve_contact(colour_list[counters.colour[colour].y + i], push.args.y == 0u);
+    uint p = colour_list[counters.colour[colour].y + i];
+    if (push.args.z != 0u) warm_start_contact(p);
+    else solve_contact(p);
 }

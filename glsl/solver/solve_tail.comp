@@ -12,5 +12,6 @@ void main()
     uint base = pair_half_base(), count = counters.state.z;
     for (uint p = 0u; p < count; p++)
         if (pairs[base + p].z == TB_NO_COLOUR && manifolds[base + p].info.x > 0u)
-            solve_contact(p, push.args.y == 0u);
+            if (push.args.z != 0u) warm_start_contact(p);
+            else solve_contact(p);
 }

@@ -1,7 +1,8 @@
 /* The step as a graph of stages, built from the kernels and the parallel primitives.
  *
- * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> colouring -> forces ->
- * solver -> integration. Gravity is applied after the pairs and colours are known, so a
+ * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> colouring -> solver
+ * data -> forces -> solver -> integration. The solver data (restitution) comes before
+ * gravity so a bounce reflects the speed the body hit with. Gravity is applied after the pairs and colours are known, so a
  * step that overflows a buffer is abandoned before any body changes; and before the
  * solver, so a body resting on another has its weight cancelled by the contact in the same
  * step and does not sink or jitter.
@@ -124,7 +125,14 @@ static void colour_stage(builder* b)
     end_stage(b, "solver/colour");
 }
 
-/* prepare, then every iteration visits the colours in order, one dispatch each
+static void prepare_stage(builder* b)
+{
+    tb_world* w = b->w;
+    if (!b->r) b->r = tb_solver_record_prepare(&w->solver, &b->list, w->sim.counters.buffer);
+    end_stage(b, "solver/prepare");
+}
+
+/* Every iteration visits the colours in order, one dispatch each
  * (constraints of a colour touch disjoint dynamic bodies: solved in parallel, no conflict). */
 static void solve_stage(builder* b)
 {
@@ -151,6 +159,7 @@ tb_result tb_step_build(tb_world* w)
     grid_stage(&b);
     single(&b, TB_KERNEL_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/contacts");
     colour_stage(&b);
+    prepare_stage(&b);
     single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
     solve_stage(&b);
     single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");

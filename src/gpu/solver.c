@@ -88,17 +88,18 @@ tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkB
     return r ? r : add(s, list, &finish);
 }
 
+/* One sweep over the colours: a warm start (push z = 1) or a solve iteration. */
 static tb_result record_iteration(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
-                                  uint32_t rounds, uint32_t iteration)
+                                  uint32_t rounds, uint32_t iteration, uint32_t warm)
 {
     tb_result r = TB_OK;
     for (uint32_t colour = 0; colour < rounds && !r; colour++) {
-        tb_pass solve = per_pair(s->solve, counters, colour, iteration, 0);
+        tb_pass solve = per_pair(s->solve, counters, colour, iteration, warm);
         solve.indirect_offset = TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour;
         r = add(s, list, &solve);
     }
     if (!r && rounds == TB_MAX_COLOURS) {
-        tb_pass tail = per_pair(s->solve_tail, counters, 0, iteration, 0);
+        tb_pass tail = per_pair(s->solve_tail, counters, 0, iteration, warm);
         tail.rule = TB_DISPATCH_FIXED;
         tail.groups[0] = tail.groups[1] = tail.groups[2] = 1;
         r = add(s, list, &tail);
@@ -106,14 +107,18 @@ static tb_result record_iteration(const tb_solver* s, tb_pass_list* list, VkBuff
     return r;
 }
 
+tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuffer counters)
+{
+    tb_pass prepare = per_pair(s->prepare, counters, 0, 0, 0);
+    return add(s, list, &prepare);
+}
+
 tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
                                  uint32_t rounds, uint32_t iterations)
 {
     tb_result r = check_rounds(s, rounds);
-    if (r) return r;
-    tb_pass prepare = per_pair(s->prepare, counters, 0, 0, 0);
-    r = add(s, list, &prepare);
+    if (!r) r = record_iteration(s, list, counters, rounds, 0, 1);
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = record_iteration(s, list, counters, rounds, it);
+        r = record_iteration(s, list, counters, rounds, it, 0);
     return r;
 }

@@ -7,7 +7,7 @@
  * counters.colour_dispatch[c]. The host records every colour that may exist (`rounds`), so
  * colours the step did not use are empty dispatches.
  *
- * In the step: apply_forces (resets claims and push) -> colouring -> prepare + solve ->
+ * In the step: colouring -> prepare -> apply_forces (resets claims and push) -> solve ->
  * integrate (moves poses with velocity + push).
  */
 #ifndef TB_SOLVER_H
@@ -35,7 +35,11 @@ void tb_solver_destroy(tb_solver* s);
 tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
                                      uint32_t rounds, uint32_t sub_rounds);
 
-/// prepare, then `iterations` (params.capacity.w) times: the solve of colours 0..rounds-1,
+/// prepare: the constraints' solver data. Before gravity is applied, so restitution sees the
+/// approach speed the body had when the step began (the speed it hit with).
+tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuffer counters);
+
+/// `iterations` (params.capacity.w) times: the solve of colours 0..rounds-1,
 /// and solve_tail when rounds == TB_MAX_COLOURS (the only case that may leave constraints
 /// uncoloured without abandoning the step).
 tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
