@@ -96,8 +96,11 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 /* Threads per workgroup of per-body stages. */
 #define TB_WORKGROUP_SIZE       64
-/* Threads per workgroup of the solver's per-colour dispatches. */
+/* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for
+ * it. Workgroups in x stay within Vulkan's guaranteed maxComputeWorkGroupCount[0]; larger
+ * colours get rows in y (index = (group.y * num_groups.x + group.x) * size + local). */
 #define TB_SOLVER_WORKGROUP_SIZE 64
+#define TB_SOLVER_DISPATCH_MAX_X 65535
 
 /* Parameters of the step, written by the host before a submission (never mid-step). */
 TB_STRUCT(tb_gpu_params) {
@@ -120,10 +123,11 @@ TB_STRUCT(tb_gpu_counters) {
                                  z pairs this step, w pairs needed (valid after an overflow) */
     TB_UVEC4 grid;            /* x largest dynamic AABB extent (float bits), y large bodies,
                                  z entries sorted (body slots), w unused */
-    TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured, z batches
-                                 (subgroup-wide), w contact points */
+    TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
+                                 counts every constraint here, colour_finish subtracts the
+                                 coloured ones), z batches (subgroup-wide), w contact points */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
-                                                 colour list, z placed so far, w unused */
+                                                 colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
@@ -145,13 +149,18 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
 };
 
-/* Solver data of one contact point, prepared once per step. */
+/* Solver data of one contact point, prepared once per step (solver/prepare). Masses are
+ * effective masses 1 / (J M^-1 J^T) along the normal and the two tangents; the velocity
+ * targets are relative normal velocities (b minus a along the normal) the solve drives
+ * towards: the real one (restitution, speculative approach), the split (pseudo) one
+ * (penetration recovery). */
 TB_STRUCT(tb_gpu_constraint_point) {
     TB_VEC4 ra;               /* xyz point relative to a's centre, w normal effective mass */
     TB_VEC4 rb;               /* xyz point relative to b's centre, w normal velocity target */
     TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z split velocity target, w unused */
 };
 
+/* Indexed like the pairs of this step's half (constraints[p] for pairs[half base + p]). */
 TB_STRUCT(tb_gpu_constraint) {
     TB_VEC4 tangent1;         /* xyz first friction direction, w friction coefficient */
     TB_VEC4 tangent2;         /* xyz second friction direction, w restitution */

@@ -2,12 +2,18 @@
 #extension GL_GOOGLE_include_directive : require
 // Gravity and damping change the velocities of dynamic bodies: v += g * scale * dt, then
 // each velocity is scaled by 1 / (1 + dt * damping) (stable for any dt, no sign flip).
+// Every slot, static ones too, also starts the step with no colouring claim and no
+// split-impulse push: the solver's passes accumulate into both.
 #include "world.glsl"
 
 void main()
 {
     uint i = body_thread_index();
-    if (i >= params.counts.x || !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
+    if (i >= params.counts.x || step_aborted()) return;
+    body_claim[i] = 0xffffffffu;
+    body_push[2u * i] = vec4(0.0);
+    body_push[2u * i + 1u] = vec4(0.0);
+    if (!body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
     float dt = params.gravity.w;
     vec4 lin = body_linvel[i];
     vec4 ang = body_angvel[i];

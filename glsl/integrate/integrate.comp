@@ -4,6 +4,10 @@
 // turns by the angle |w| dt about w / |w|, clamped to params.limits.x per step so a wild
 // spin cannot wrap the quaternion update (the stored angular velocity is left alone).
 // For tiny angles sin(a/2)/|w| is replaced by its Taylor series to keep precision.
+// The pose moves with the velocities plus the solver's split-impulse push (body_push), which
+// recovers penetration; the stored velocities stay without it, so recovery adds no energy.
+// Every slot's colouring claim is released here, even in an abandoned step: the next step's
+// colouring (or this step's redo) then starts clean whether or not apply_forces runs first.
 #include "world.glsl"
 #include "quat.glsl"
 
@@ -29,10 +33,14 @@ vec4 rotation_of(vec3 w, float dt, float max_angle)
 void main()
 {
     uint i = body_thread_index();
-    if (i >= params.counts.x || !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
+    if (i >= params.counts.x) return;
+    body_claim[i] = 0xffffffffu;
+    if (step_aborted() || !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
     float dt = params.gravity.w;
     vec4 p = body_pos[i];
-    body_pos[i] = vec4(p.xyz + body_linvel[i].xyz * dt, p.w);
-    vec4 turn = rotation_of(body_angvel[i].xyz, dt, params.limits.x);
+    vec3 v = body_linvel[i].xyz + body_push[2u * i].xyz;
+    vec3 w = body_angvel[i].xyz + body_push[2u * i + 1u].xyz;
+    body_pos[i] = vec4(p.xyz + v * dt, p.w);
+    vec4 turn = rotation_of(w, dt, params.limits.x);
     body_rot[i] = normalize(quat_mul(turn, body_rot[i]));
 }

@@ -1,10 +1,10 @@
 /* The step as a graph of stages, built from the kernels and the parallel primitives.
  *
- * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> forces -> colouring ->
- * solver -> integration. Gravity is applied after the pairs are known, so a step that
- * overflows a buffer is abandoned before any body changes; and before the solver, so a
- * body resting on another has its weight cancelled by the contact in the same step and
- * does not sink or jitter.
+ * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> colouring -> forces ->
+ * solver -> integration. Gravity is applied after the pairs and colours are known, so a
+ * step that overflows a buffer is abandoned before any body changes; and before the
+ * solver, so a body resting on another has its weight cancelled by the contact in the same
+ * step and does not sink or jitter.
  */
 #include <string.h>
 
@@ -21,13 +21,6 @@ static const kernel_def kernel_defs[TB_KERNEL_COUNT] = {
     [TB_KERNEL_PAIR_CHECK] = { "broadphase/pair_check", TB_WORKGROUP_SIZE },
     [TB_KERNEL_CONTACTS] = { "narrowphase/contacts", TB_WORKGROUP_SIZE },
     [TB_KERNEL_APPLY_FORCES] = { "integrate/apply_forces", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_COLOUR_CLAIM] = { "solver/colour_claim", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_COLOUR_DECIDE] = { "solver/colour_decide", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_COLOUR_FINISH] = { "solver/colour_finish", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_COLOUR_SCATTER] = { "solver/colour_scatter", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_PREPARE] = { "solver/prepare", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_SOLVE] = { "solver/solve", TB_SOLVER_WORKGROUP_SIZE },
-    [TB_KERNEL_SOLVE_TAIL] = { "solver/solve_tail", 1 },
     [TB_KERNEL_INTEGRATE] = { "integrate/integrate", TB_WORKGROUP_SIZE },
     [TB_KERNEL_STEP_END] = { "step/end", 1 },
 };
@@ -125,26 +118,19 @@ static void grid_stage(builder* b)
 
 static void colour_stage(builder* b)
 {
-    for (uint32_t round = 0; round < b->w->colour_rounds; round++) {
-        per_pair(b, TB_KERNEL_COLOUR_CLAIM, round);
-        per_pair(b, TB_KERNEL_COLOUR_DECIDE, round);
-    }
-    once(b, TB_KERNEL_COLOUR_FINISH);
-    per_pair(b, TB_KERNEL_COLOUR_SCATTER, 0);
+    tb_world* w = b->w;
+    if (!b->r) b->r = tb_solver_record_colouring(&w->solver, &b->list, w->sim.counters.buffer,
+                                                 w->colour_rounds, TB_SOLVER_SUB_ROUNDS);
     end_stage(b, "solver/colour");
 }
 
-/* Every iteration visits the colours in order, one dispatch each (constraints of a colour
- * touch disjoint dynamic bodies, so a colour is solved in parallel without conflicts). */
+/* prepare, then every iteration visits the colours in order, one dispatch each
+ * (constraints of a colour touch disjoint dynamic bodies: solved in parallel, no conflict). */
 static void solve_stage(builder* b)
 {
     tb_world* w = b->w;
-    for (uint32_t it = 0; it < w->solver_iterations; it++) {
-        for (uint32_t c = 0; c < w->colour_rounds; c++)
-            add(b, TB_KERNEL_SOLVE, TB_DISPATCH_INDIRECT,
-                TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * c, c, it, 0);
-        if (w->colour_rounds == TB_MAX_COLOURS) add(b, TB_KERNEL_SOLVE_TAIL, TB_DISPATCH_FIXED, 0, 0, it, 0);
-    }
+    if (!b->r) b->r = tb_solver_record_solve(&w->solver, &b->list, w->sim.counters.buffer,
+                                             w->colour_rounds, w->solver_iterations);
     end_stage(b, "solver/solve");
 }
 
@@ -164,9 +150,8 @@ tb_result tb_step_build(tb_world* w)
     single(&b, TB_KERNEL_WORLD_AABB, TB_DISPATCH_PER_BODY, "broadphase/world_aabb");
     grid_stage(&b);
     single(&b, TB_KERNEL_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/contacts");
-    single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
     colour_stage(&b);
-    single(&b, TB_KERNEL_PREPARE, TB_DISPATCH_INDIRECT, "solver/prepare");
+    single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
     solve_stage(&b);
     single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");
     single(&b, TB_KERNEL_STEP_END, TB_DISPATCH_FIXED, "step/end");

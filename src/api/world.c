@@ -91,6 +91,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_prims_init(&w->prims, &w->pipelines);
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
                             w->store.capacity, pairs);
+    if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_step_build(w);
     return r;
@@ -142,6 +143,7 @@ void tb_world_destroy(tb_world* w)
     if (w->gpu.device) {
         tb_graph_destroy(&w->graph);
         tb_step_kernels_destroy(w);
+        tb_solver_destroy(&w->solver);
         tb_sim_destroy(&w->sim);
         tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);

@@ -9,6 +9,7 @@
 #include "gpu/pipeline.h"
 #include "gpu/prims.h"
 #include "gpu/sim.h"
+#include "gpu/solver.h"
 #include "gpu/transfer.h"
 #include "layout.h"
 #include "tumble.h"
@@ -19,8 +20,6 @@
 typedef enum tb_kernel {
     TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_GRID_ASSIGN, TB_KERNEL_GRID_RANGES,
     TB_KERNEL_GRID_PAIRS, TB_KERNEL_PAIR_CHECK, TB_KERNEL_CONTACTS, TB_KERNEL_APPLY_FORCES,
-    TB_KERNEL_COLOUR_CLAIM, TB_KERNEL_COLOUR_DECIDE, TB_KERNEL_COLOUR_FINISH,
-    TB_KERNEL_COLOUR_SCATTER, TB_KERNEL_PREPARE, TB_KERNEL_SOLVE, TB_KERNEL_SOLVE_TAIL,
     TB_KERNEL_INTEGRATE, TB_KERNEL_STEP_END, TB_KERNEL_COUNT
 } tb_kernel;
 
@@ -64,6 +63,7 @@ struct tb_world {
     tb_body_store store;
     tb_prims prims;
     tb_sim sim;
+    tb_solver solver;
     VkPipeline kernels[TB_KERNEL_COUNT];
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)

@@ -65,11 +65,12 @@ static tb_result check_range(const tb_sim* sim, VkDeviceSize bytes, const char* 
 
 /* Replace `old` (may be empty) by a zeroed buffer of `bytes`, copying `regions` over. */
 static tb_result replace(tb_sim* sim, tb_transfer* t, tb_buffer* old, VkDeviceSize bytes,
-                         const VkBufferCopy* regions, uint32_t region_count, tb_buffer* out)
+                         const VkBufferCopy* regions, uint32_t region_count, uint32_t fill,
+                         tb_buffer* out)
 {
     tb_result r = tb_buffer_create(sim->memory, bytes ? bytes : 16, USAGE, 0, out);
     if (r) return r;
-    vkCmdFillBuffer(t->cb, out->buffer, 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(t->cb, out->buffer, 0, VK_WHOLE_SIZE, fill);
     if (old->buffer && region_count) {
         VkMemoryBarrier fill_first = { .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
             .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT, .dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT };
@@ -116,8 +117,10 @@ tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
     for (int b = 0; b < TB_SIM_BODY_BUFFER_COUNT && !r; b++) {
         VkDeviceSize keep = b == TB_SIM_BODY_PAIRS ? body_bytes(sim, b, sim->body_capacity, 0) : 0;
         VkBufferCopy region = { 0, 0, keep };
+        /* Claims start free (all ones: any claim is smaller). */
+        uint32_t fill = b == TB_SIM_BODY_CLAIM ? 0xffffffffu : 0u;
         r = replace(sim, t, &sim->body[b], body_bytes(sim, b, capacity, 1u << bits), &region,
-                    keep ? 1 : 0, &fresh[b]);
+                    keep ? 1 : 0, fill, &fresh[b]);
     }
     r = finish(sim, t, sim->body, fresh, body_binding, TB_SIM_BODY_BUFFER_COUNT, r);
     if (r) return r;
@@ -145,7 +148,7 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
         VkDeviceSize half_new = pair_bytes(b, pairs) / 2;
         VkBufferCopy regions[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
         int halves = (b == TB_SIM_PAIRS || b == TB_SIM_MANIFOLDS) && half_old ? 2 : 0;
-        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), regions, halves, &fresh[b]);
+        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), regions, halves, 0, &fresh[b]);
     }
     r = finish(sim, t, sim->pair, fresh, pair_binding, TB_SIM_PAIR_BUFFER_COUNT, r);
     if (r) return r;

@@ -1,0 +1,119 @@
+/* Pipelines and pass lists of the contact solver. */
+#include "gpu/solver.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "layout.h"
+
+/* Workgroup sizes: per-pair passes match counters.pair_dispatch, colour_finish has one thread
+ * per colour, solve matches counters.colour_dispatch, the tail is one thread. */
+static const struct { const char* shader; uint32_t workgroup; size_t field; } kernels[] = {
+    { "solver/colour_claim", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_claim) },
+    { "solver/colour_decide", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_decide) },
+    { "solver/colour_finish", TB_MAX_COLOURS, offsetof(tb_solver, colour_finish) },
+    { "solver/prepare", TB_WORKGROUP_SIZE, offsetof(tb_solver, prepare) },
+    { "solver/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_solver, solve) },
+    { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
+};
+#define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
+
+static VkPipeline* pipeline_at(tb_solver* s, size_t field)
+{
+    return (VkPipeline*)((char*)s + field);
+}
+
+tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines)
+{
+    memset(s, 0, sizeof *s);
+    s->pipelines = pipelines;
+    tb_result r = TB_OK;
+    for (size_t k = 0; k < KERNEL_COUNT && !r; k++)
+        r = tb_pipeline_create(pipelines, kernels[k].shader, kernels[k].workgroup,
+                               pipeline_at(s, kernels[k].field));
+    if (r) tb_solver_destroy(s);
+    return r;
+}
+
+void tb_solver_destroy(tb_solver* s)
+{
+    if (!s->pipelines) return;
+    for (size_t k = 0; k < KERNEL_COUNT; k++) {
+        VkPipeline* p = pipeline_at(s, kernels[k].field);
+        if (*p) vkDestroyPipeline(s->pipelines->gpu->device, *p, NULL);
+    }
+    memset(s, 0, sizeof *s);
+}
+
+static tb_result add(const tb_solver* s, tb_pass_list* list, const tb_pass* pass)
+{
+    return tb_pass_list_add(list, s->pipelines->gpu->diag, pass);
+}
+
+/* A pass over this step's pairs with push arguments (x, y, z). */
+static tb_pass per_pair(VkPipeline pipeline, VkBuffer counters, uint32_t x, uint32_t y, uint32_t z)
+{
+    tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_INDIRECT, .indirect = counters,
+                     .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET,
+                     .push_size = sizeof(tb_gpu_push) };
+    tb_gpu_push push = { { x, y, z, 0 } };
+    memcpy(pass.push, &push, sizeof push);
+    return pass;
+}
+
+static tb_result check_rounds(const tb_solver* s, uint32_t rounds)
+{
+    if (rounds >= 1 && rounds <= TB_MAX_COLOURS) return TB_OK;
+    return tb_fail(s->pipelines->gpu->diag, TB_ERROR_INVALID_ARGUMENT,
+                   "colouring rounds must be 1..%d, not %u", TB_MAX_COLOURS, rounds);
+}
+
+tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                     uint32_t rounds, uint32_t sub_rounds)
+{
+    tb_result r = check_rounds(s, rounds);
+    if (!r && sub_rounds == 0)
+        r = tb_fail(s->pipelines->gpu->diag, TB_ERROR_INVALID_ARGUMENT, "sub_rounds must be >= 1");
+    for (uint32_t round = 0; round < rounds && !r; round++) {
+        /* The last possible round's taken mark would read as free: it gets one sub-round. */
+        uint32_t subs = round + 1 < TB_MAX_COLOURS ? sub_rounds : 1;
+        for (uint32_t sub = 0; sub < subs && !r; sub++) {
+            tb_pass claim = per_pair(s->colour_claim, counters, round, sub, subs);
+            tb_pass decide = per_pair(s->colour_decide, counters, round, sub, subs);
+            r = add(s, list, &claim);
+            if (!r) r = add(s, list, &decide);
+        }
+    }
+    tb_pass finish = { .pipeline = s->colour_finish, .rule = TB_DISPATCH_FIXED, .groups = { 1, 1, 1 } };
+    return r ? r : add(s, list, &finish);
+}
+
+static tb_result record_iteration(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                  uint32_t rounds, uint32_t iteration)
+{
+    tb_result r = TB_OK;
+    for (uint32_t colour = 0; colour < rounds && !r; colour++) {
+        tb_pass solve = per_pair(s->solve, counters, colour, iteration, 0);
+        solve.indirect_offset = TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour;
+        r = add(s, list, &solve);
+    }
+    if (!r && rounds == TB_MAX_COLOURS) {
+        tb_pass tail = per_pair(s->solve_tail, counters, 0, iteration, 0);
+        tail.rule = TB_DISPATCH_FIXED;
+        tail.groups[0] = tail.groups[1] = tail.groups[2] = 1;
+        r = add(s, list, &tail);
+    }
+    return r;
+}
+
+tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                 uint32_t rounds, uint32_t iterations)
+{
+    tb_result r = check_rounds(s, rounds);
+    if (r) return r;
+    tb_pass prepare = per_pair(s->prepare, counters, 0, 0, 0);
+    r = add(s, list, &prepare);
+    for (uint32_t it = 0; it < iterations && !r; it++)
+        r = record_iteration(s, list, counters, rounds, it);
+    return r;
+}

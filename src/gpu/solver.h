@@ -1,0 +1,44 @@
+/* The contact solver's passes: graph colouring of the constraints into batches, then
+ * batched projected Gauss-Seidel with split impulses (glsl/solver/).
+ *
+ * The passes read and write the world's set 0 (counters, pairs, manifolds, constraints,
+ * colour list, body arrays, claims, push); sizes only the GPU knows come from the counters:
+ * per-pair passes are dispatched with counters.pair_dispatch, the solve of colour c with
+ * counters.colour_dispatch[c]. The host records every colour that may exist (`rounds`), so
+ * colours the step did not use are empty dispatches.
+ *
+ * In the step: apply_forces (resets claims and push) -> colouring -> prepare + solve ->
+ * integrate (moves poses with velocity + push).
+ */
+#ifndef TB_SOLVER_H
+#define TB_SOLVER_H
+
+#include "gpu/graph.h"
+
+typedef struct tb_solver {
+    tb_pipelines* pipelines;
+    VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail;
+} tb_solver;
+
+/// Build the solver's pipelines.
+tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines);
+void tb_solver_destroy(tb_solver* s);
+
+/// Sub-rounds per colouring round that make colours nearly as few as a sequential greedy
+/// colouring (2 gets within a colour or two of it on random and lattice graphs; 1 needs
+/// about 1.5 times the colours).
+#define TB_SOLVER_SUB_ROUNDS 2
+
+/// Colouring: for each of `rounds` rounds (1..TB_MAX_COLOURS, params.capacity.z), `sub_rounds`
+/// (>= 1; the last possible round always gets 1) times colour_claim then colour_decide; then
+/// colour_finish. `counters` is the buffer bound at TB_BIND_COUNTERS.
+tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                     uint32_t rounds, uint32_t sub_rounds);
+
+/// prepare, then `iterations` (params.capacity.w) times: the solve of colours 0..rounds-1,
+/// and solve_tail when rounds == TB_MAX_COLOURS (the only case that may leave constraints
+/// uncoloured without abandoning the step).
+tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                 uint32_t rounds, uint32_t iterations);
+
+#endif
