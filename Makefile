@@ -33,7 +33,7 @@ SPV        := $(SHADERS:glsl/%.comp=$(BUILD)/spv/%.spv)
 SCENES_SRC := $(wildcard tools/scenes/*.c)
 TEST_SRC   := $(sort $(wildcard tests/test_*.c))
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
-TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run
+TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
@@ -98,6 +98,11 @@ TOOL_LINK   := $(SCENES_SRC) $(RENDER_SRC) $(BUILD)/libtumble.a $(RENDER_LIBS) $
 $(BUILD)/bench: tools/bench/bench.c $(TOOL_DEPS)
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/bench/bench.c $(TOOL_LINK)
+
+# GPU time of the parallel primitives; it uses the library's internals, as the tests do.
+$(BUILD)/bench-prims: tools/bench/prims.c $(BUILD)/libtumble.a
+	$(call say,LD,$@)
+	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -o $@ tools/bench/prims.c $(BUILD)/libtumble.a $(LIBS)
 
 $(BUILD)/tumble-run: tools/run/run.c $(TOOL_DEPS)
 	$(call say,LD,$@)

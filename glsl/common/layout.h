@@ -138,6 +138,55 @@ TB_STRUCT(tb_gpu_push) {
     TB_UVEC4 args;            /* x colour (or round), y iteration, z flags, w unused */
 };
 
+/* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed
+ * as push constants, each as a (low, high) uint pair so no shader needs int64; element
+ * counts are read on the GPU from the uint at a `count` address and clamped to the largest
+ * count the scratch memory was sized for. A tile is the run of elements one workgroup
+ * handles; the host sizes scratch and dispatches in tiles. */
+#define TB_PRIMS_SCAN_TILE      4096 /* elements per workgroup of scan and compaction */
+#define TB_PRIMS_SORT_TILE      2048 /* elements per tile of the radix sort */
+#define TB_PRIMS_SORT_MAX_BLOCKS 1024 /* most workgroups of a sort pass: beyond it, each takes
+                                        a block of several tiles (fewer digit counts) */
+#define TB_PRIMS_RADIX_BITS     8    /* key bits sorted per pass */
+#define TB_PRIMS_RADIX          256  /* digits per pass: 1 << TB_PRIMS_RADIX_BITS */
+#define TB_PRIMS_SCAN_MODE_SUM  TB_U(0) /* scan_reduce sums the values */
+#define TB_PRIMS_SCAN_MODE_FLAGS TB_U(1) /* scan_reduce counts the nonzero flags */
+
+/* prims/fill */
+TB_STRUCT(tb_gpu_fill_push) {
+    TB_UVEC4 dst;             /* xy address of element 0, zw address of the count (0: args.x) */
+    TB_UVEC4 args;            /* x count when zw is 0, else the largest count; y value; z w unused */
+};
+
+/* prims/indirect_args: one VkDispatchIndirectCommand covering a count of threads. */
+TB_STRUCT(tb_gpu_indirect_push) {
+    TB_UVEC4 ptrs;            /* xy address of the count, zw address of the command (3 uints) */
+    TB_UVEC4 args;            /* x threads per group, y most groups in x (device limit),
+                                 z largest count (the count is clamped to it), w unused */
+};
+
+/* prims/scan_reduce, scan_spine, scan_down, compact_scatter */
+TB_STRUCT(tb_gpu_scan_push) {
+    TB_UVEC4 data;            /* xy input (values or flags), zw output (sums or indices) */
+    TB_UVEC4 aux;             /* xy sum of each tile (scratch), zw where the total goes (0: nowhere) */
+    TB_UVEC4 count;           /* xy address of the count, z largest count, w TB_PRIMS_SCAN_MODE_* */
+};
+
+/* prims/sort_args, sort_histogram, sort_spine, sort_scatter, copy */
+TB_STRUCT(tb_gpu_sort_push) {
+    TB_UVEC4 keys;            /* xy keys read, zw keys written */
+    TB_UVEC4 values;          /* xy values read, zw values written */
+    TB_UVEC4 spine;           /* xy count of each digit in each block of tiles, digit-major
+                                 ([digit * blocks + block]; scanned in place by sort_spine),
+                                 zw count of each digit in all blocks */
+    TB_UVEC4 count;           /* xy address of the count, z largest count,
+                                 w first key bit of the digit | digit bits << 8 */
+    TB_UVEC4 plan;            /* xy address of the plan sort_args writes: uint [0..2] the
+                                 dispatch of the blocks, [4..6] that of sort_spine, [8] tiles
+                                 per block, [9] blocks; z subgroups per workgroup of
+                                 sort_spine, w most blocks */
+};
+
 /* Contact manifold of one pair: up to four points sharing a normal. */
 TB_STRUCT(tb_gpu_manifold) {
     TB_VEC4 normal;           /* xyz unit normal pointing from body a to body b, w friction */
