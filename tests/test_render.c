@@ -382,9 +382,11 @@ static uint32_t read_contacts(tb_world* w, tb_contact* out)
     return n;
 }
 
-/* A box settled on the ground under gravity: its contact points and normals are drawn where
- * the contacts read back project, on both halves of the manifold buffer (two consecutive
- * steps), and not at all without show_contacts. */
+/* A box resting on the ground under gravity and a ball rolling fast past it: their contact
+ * points and normals are drawn where the contacts read back project, after two consecutive
+ * steps (the two halves of the manifold buffer; the ball's contact moves some pixels a
+ * step, so drawing the other step's half would show), and not at all without
+ * show_contacts. */
 static void test_contacts_overlay(void** state)
 {
     (void)state;
@@ -393,7 +395,10 @@ static void test_contacts_overlay(void** state)
     th_body(w, &ground);
     tb_body_def box = th_dynamic_def(th_box(w, th_v3(0.5f, 0.5f, 0.5f)), th_v3(0, 0.5f, 0));
     th_body(w, &box);
-    th_assert_ok(tb_world_step_n(w, 1.0f / 60.0f, 20));
+    tb_body_def ball = th_dynamic_def(th_sphere(w, 0.5f), th_v3(-2.5f, 0.5f, 1.5f));
+    ball.linear_velocity = th_v3(12, 0, 0);
+    th_body(w, &ball);
+    th_assert_ok(tb_world_step_n(w, 1.0f / 60.0f, 3));
 
     tr_options o = fixed_camera_options();
     o.show_contacts = 1;
