@@ -30,7 +30,7 @@
  * the same size on screen (a few pixels) near and far. */
 #define TR_CONTACT_CROSS_SHARE 0.012
 /* Normal line length: this share of the eye-target distance, so it scales with the view. */
-#define TR_CONTACT_NORMAL_SHARE 0.05
+#define TR_CONTACT_NORMAL_SHARE 0.03
 /* Colours in exact 8-bit steps (a test finds them in the image): points magenta, normals
  * yellow; no lit surface, the sky or the AABB lines come out in either. */
 #define TR_CONTACT_POINT_R 255
