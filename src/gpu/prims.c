@@ -1,9 +1,14 @@
 /* Parallel primitives: pipelines, scratch layouts and the passes each primitive appends.
  *
- * Every primitive that depends on a GPU count starts with an indirect_args pass that turns
- * the count into the workgroup count of its tile passes, stored at the start of its scratch;
- * the passes after it are dispatched from there. Passes whose work does not grow with the
- * count (the spines) have fixed dispatches and read the count themselves.
+ * Every primitive that depends on a GPU count starts with a one-workgroup pass that turns
+ * the count into the dispatch of its tile passes, stored at the start of its scratch
+ * (indirect_args; sort_args for the sort, which also plans blocks of tiles and its spine);
+ * the passes after it are dispatched from there. The scan's spine, one workgroup whatever
+ * the count, has a fixed dispatch. Every kernel reads the count itself.
+ *
+ * Measured on an H200 (tools/bench/prims.c): 32-bit keys with values sort at about 11.6
+ * G pairs/s at 16M, 158 us at 1M, 90 us at 64K (13 dependent dispatches are the floor);
+ * scans of 16M uints take 97 us.
  */
 #include "gpu/prims.h"
 
