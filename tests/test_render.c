@@ -1,8 +1,9 @@
 /* tools/render on lavapipe with validation (synchronization included) on: a box resting on
  * a ground plane seen by a fixed camera must appear where the same camera maths projects it,
- * in its colour, over ground and under sky; an empty world renders; the automatic camera
- * frames a few spheres. Pixels are classified by colour family, not compared exactly,
- * except the cleared sky. */
+ * in its colour, over ground and under sky; its contacts with the ground, when shown, appear
+ * where the contacts read back project, and nowhere else; an empty world renders; the
+ * automatic camera frames a few spheres. Pixels are classified by colour family, not
+ * compared exactly, except the cleared sky and the contact overlay's two colours. */
 #include "harness.h"
 
 #include <math.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 
 #include "render.h"
+#include "render_layout.h"   /* the contact overlay's colours and sizes */
 
 #define W 320
 #define H 240
@@ -234,6 +236,198 @@ static void test_box_on_plane(void** state)
     th_world_destroy(w);
 }
 
+/* ---- contact overlay ---- */
+
+#define MAX_CONTACTS 16
+
+static int is_rgb(const uint8_t* p, int r, int g, int b)
+{
+    return p[0] == r && p[1] == g && p[2] == b;
+}
+static int is_contact_point(const uint8_t* p)
+{
+    return is_rgb(p, TR_CONTACT_POINT_R, TR_CONTACT_POINT_G, TR_CONTACT_POINT_B);
+}
+static int is_contact_normal(const uint8_t* p)
+{
+    return is_rgb(p, TR_CONTACT_NORMAL_R, TR_CONTACT_NORMAL_G, TR_CONTACT_NORMAL_B);
+}
+
+/* A line of the overlay on screen, pixels. */
+typedef struct segment2 { double a[2], b[2]; } segment2;
+
+static double distance3(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+static double segment_distance(double x, double y, const segment2* s)
+{
+    double dx = s->b[0] - s->a[0], dy = s->b[1] - s->a[1];
+    double len2 = dx * dx + dy * dy;
+    double t = len2 > 0 ? ((x - s->a[0]) * dx + (y - s->a[1]) * dy) / len2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    double ex = s->a[0] + t * dx - x, ey = s->a[1] + t * dy - y;
+    return sqrt(ex * ex + ey * ey);
+}
+
+static segment2 project_segment(const tr_camera* c, const double a[3], const double b[3])
+{
+    segment2 s;
+    if (!project(c, W, H, a, &s.a[0], &s.a[1]) || !project(c, W, H, b, &s.b[0], &s.b[1]))
+        fail_msg("a contact line is behind the camera");
+    return s;
+}
+
+/* What the overlay should draw for each contact, by the sizes the shader uses: three cross
+ * arms around the point, and the normal from the point. */
+static void contact_lines(const tr_camera* c, const tb_contact* k, uint32_t n,
+                          segment2* crosses, segment2* normals)
+{
+    const double eye[3] = { c->eye.x, c->eye.y, c->eye.z };
+    const double target[3] = { c->target.x, c->target.y, c->target.z };
+    double normal_len = TR_CONTACT_NORMAL_SHARE * distance3(eye, target);
+    for (uint32_t i = 0; i < n; i++) {
+        const double p[3] = { k[i].point.x, k[i].point.y, k[i].point.z };
+        const double nrm[3] = { k[i].normal.x, k[i].normal.y, k[i].normal.z };
+        double arm = TR_CONTACT_CROSS_SHARE * distance3(eye, p);
+        for (int axis = 0; axis < 3; axis++) {
+            double lo[3] = { p[0], p[1], p[2] }, hi[3] = { p[0], p[1], p[2] };
+            lo[axis] -= arm;
+            hi[axis] += arm;
+            crosses[3 * i + axis] = project_segment(c, lo, hi);
+        }
+        double tip[3];
+        for (int j = 0; j < 3; j++) tip[j] = p[j] + normal_len * nrm[j];
+        normals[i] = project_segment(c, p, tip);
+    }
+}
+
+/* Whether some pixel within `radius` of (x, y) satisfies `family`. */
+static int near_pixel(const uint8_t* rgba, double x, double y, int radius,
+                      int (*family)(const uint8_t*))
+{
+    int cx = (int)floor(x), cy = (int)floor(y);
+    for (int py = cy - radius; py <= cy + radius; py++)
+        for (int px = cx - radius; px <= cx + radius; px++)
+            if (px >= 0 && py >= 0 && px < W && py < H && family(pixel(rgba, W, px, py)))
+                return 1;
+    return 0;
+}
+
+static double nearest_segment(double x, double y, const segment2* s, uint32_t n)
+{
+    double best = 1e30;
+    for (uint32_t i = 0; i < n; i++) best = fmin(best, segment_distance(x, y, &s[i]));
+    return best;
+}
+
+/* Each contact's cross at its projected point and its normal along the projected normal;
+ * no pixel of either colour off those lines (1.5 pixels allow for line rasterization). */
+static void check_contacts_drawn(const tr_camera* c, const uint8_t* rgba, const tb_contact* k,
+                                 uint32_t n)
+{
+    segment2 crosses[3 * MAX_CONTACTS], normals[MAX_CONTACTS];
+    contact_lines(c, k, n, crosses, normals);
+    for (uint32_t i = 0; i < n; i++) {
+        double px, py;
+        assert_true(project(c, W, H, (const double[3]){ k[i].point.x, k[i].point.y,
+                                                        k[i].point.z }, &px, &py));
+        if (!near_pixel(rgba, px, py, 2, is_contact_point))
+            fail_msg("no contact-point pixel near contact %u, projected at (%.1f, %.1f)", i,
+                     px, py);
+        const segment2* s = &normals[i];
+        double mx = 0.5 * (s->a[0] + s->b[0]), my = 0.5 * (s->a[1] + s->b[1]);
+        if (!near_pixel(rgba, mx, my, 2, is_contact_normal))
+            fail_msg("no normal pixel near the middle of contact %u's normal, (%.1f, %.1f)", i,
+                     mx, my);
+    }
+    uint32_t points = 0, normal_pixels = 0;
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            const uint8_t* p = pixel(rgba, W, x, y);
+            if (is_contact_point(p)) {
+                points++;
+                double d = nearest_segment(x + 0.5, y + 0.5, crosses, 3 * n);
+                if (d > 1.5) fail_msg("contact-point pixel (%d, %d) is %.1f pixels off every "
+                                      "cross", x, y, d);
+            }
+            if (is_contact_normal(p)) {
+                normal_pixels++;
+                double d = nearest_segment(x + 0.5, y + 0.5, normals, n);
+                if (d > 1.5) fail_msg("normal pixel (%d, %d) is %.1f pixels off every normal",
+                                      x, y, d);
+            }
+        }
+    }
+    print_message("contacts: %u points, %u cross pixels, %u normal pixels\n", n, points,
+                  normal_pixels);
+}
+
+static uint32_t count_overlay_pixels(const uint8_t* rgba)
+{
+    uint32_t n = 0;
+    for (int i = 0; i < W * H; i++)
+        n += is_contact_point(rgba + 4 * i) || is_contact_normal(rgba + 4 * i);
+    return n;
+}
+
+static uint32_t read_contacts(tb_world* w, tb_contact* out)
+{
+    uint32_t n = 0;
+    th_assert_ok(tb_world_read_contacts(w, out, MAX_CONTACTS, &n));
+    if (n == 0) fail_msg("a box resting on a plane has no contacts");
+    if (n > MAX_CONTACTS) fail_msg("%u contacts for one box on a plane", n);
+    return n;
+}
+
+/* A box resting on the ground under gravity and a ball rolling fast past it: their contact
+ * points and normals are drawn where the contacts read back project, after two consecutive
+ * steps (the two halves of the manifold buffer; the ball's contact moves some pixels a
+ * step, so drawing the other step's half would show), and not at all without
+ * show_contacts. */
+static void test_contacts_overlay(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_body_def box = th_dynamic_def(th_box(w, th_v3(0.5f, 0.5f, 0.5f)), th_v3(0, 0.5f, 0));
+    th_body(w, &box);
+    tb_body_def ball = th_dynamic_def(th_sphere(w, 0.5f), th_v3(-2.5f, 0.5f, 1.5f));
+    ball.linear_velocity = th_v3(12, 0, 0);
+    th_body(w, &ball);
+    th_assert_ok(tb_world_step_n(w, 1.0f / 60.0f, 3));
+
+    tr_options o = fixed_camera_options();
+    o.show_contacts = 1;
+    tr_renderer* r = renderer(w, &o);
+    uint8_t* rgba = malloc((size_t)W * H * 4);
+    assert_non_null(rgba);
+    tb_contact contacts[MAX_CONTACTS];
+    for (int frame = 0; frame < 2; frame++) {
+        th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+        uint32_t n = read_contacts(w, contacts);
+        render(r, w);
+        th_assert_ok(tr_read_pixels(r, rgba));
+        if (frame == 0) th_assert_ok(tr_write_png(r, "/tmp/tumble_render_contacts.png"));
+        tr_camera c = tr_last_camera(r);
+        check_contacts_drawn(&c, rgba, contacts, n);
+    }
+
+    o.show_contacts = 0;
+    th_assert_ok(tr_set_options(r, &o));
+    render(r, w);
+    th_assert_ok(tr_read_pixels(r, rgba));
+    uint32_t stray = count_overlay_pixels(rgba);
+    if (stray) fail_msg("%u pixels of the contact colours without show_contacts", stray);
+
+    free(rgba);
+    tr_destroy(r);
+    th_world_destroy(w);
+}
+
 static void test_empty_world(void** state)
 {
     (void)state;
@@ -313,6 +507,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_box_on_plane),
+        cmocka_unit_test(test_contacts_overlay),
         cmocka_unit_test(test_empty_world),
         cmocka_unit_test(test_automatic_camera),
     };

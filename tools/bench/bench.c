@@ -31,11 +31,13 @@ typedef struct options {
     int json_only;
     const char* frames;   /* NULL: no pictures; else a folder for frame_NNNNN.png */
     uint32_t every;       /* with frames: a picture every this many timed steps */
+    int contacts;         /* with frames: draw contact points and normals */
 } options;
 
 /* Pictures of the timed steps. Rendering happens between steps, outside the timings. */
 typedef struct frame_writer {
     tr_renderer* renderer;  /* NULL: no frames */
+    tr_options options;     /* the renderer's; the camera fixed after the first frame */
     const char* dir;
     uint32_t every, written;
 } frame_writer;
@@ -63,8 +65,8 @@ static void print_usage(FILE* f)
 {
     fprintf(f,
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
-            "             [--device D] [--csv FILE] [--json-only] [--frames DIR [--every K]]\n"
-            "             [--help]\n"
+            "             [--device D] [--csv FILE] [--json-only]\n"
+            "             [--frames DIR [--every K] [--contacts]] [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
             "  --seed        seed of the scene's jitter (default 1)\n"
@@ -73,7 +75,8 @@ static void print_usage(FILE* f)
             "  --csv         append one result row to FILE (header written if new)\n"
             "  --json-only   print only the JSON line\n"
             "  --frames      write a PNG of every K-th timed step into DIR (tools/render/video\n"
-            "                makes a video of them); --every defaults to 1\n");
+            "                makes a video of them); --every defaults to 1\n"
+            "  --contacts    draw contact points and normals in the frames\n");
     scene_print_list(f);
 }
 
@@ -89,6 +92,9 @@ static int parse_args(int argc, char** argv, options* o)
             return 0;
         } else if (strcmp(a, "--json-only") == 0) {
             o->json_only = 1;
+            takes_value = 0;
+        } else if (strcmp(a, "--contacts") == 0) {
+            o->contacts = 1;
             takes_value = 0;
         } else if (!v) {
             ok = 0;
@@ -236,10 +242,9 @@ static tb_result write_frame(frame_writer* f)
     snprintf(path, sizeof path, "%s/frame_%05u.png", f->dir, f->written);
     tb_result r = tr_render(f->renderer);
     if (r == TB_OK && f->written == 0) {
-        tr_options ro = tr_default_options();
-        ro.camera = tr_last_camera(f->renderer);
-        ro.camera.automatic = 0;
-        r = tr_set_options(f->renderer, &ro);
+        f->options.camera = tr_last_camera(f->renderer);
+        f->options.camera.automatic = 0;
+        r = tr_set_options(f->renderer, &f->options);
     }
     if (r == TB_OK) r = tr_write_png(f->renderer, path);
     if (r != TB_OK) fprintf(stderr, "bench: frame %s: %s\n", path, tr_last_error(f->renderer));
@@ -412,11 +417,11 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
     r = sc->build(world, &params, &inst);
     if (r != TB_OK) return fail(world, "scene build", r);
     tb_world_stats st;
-    frame_writer frames = { NULL, o->frames, o->every, 0 };
+    frame_writer frames = { NULL, tr_default_options(), o->frames, o->every, 0 };
+    frames.options.show_contacts = o->contacts;
     int code = 0;
-    tr_options ro = tr_default_options();
     if (o->frames) mkdir(o->frames, 0777); /* an existing folder is fine */
-    if (o->frames && (r = tr_create(world, &ro, &frames.renderer)) != TB_OK)
+    if (o->frames && (r = tr_create(world, &frames.options, &frames.renderer)) != TB_OK)
         code = fail(world, "tr_create", r);
     else if (o->warmup && (r = tb_world_step_n(world, sc->dt, o->warmup)) != TB_OK)
         code = fail(world, "tb_world_step_n (warm-up)", r);
@@ -435,7 +440,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0, NULL, 1 };
+    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0, NULL, 1, 0 };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);

@@ -1,8 +1,9 @@
 /* tools/render: the public tr_ calls. A frame is one command buffer on the world's queue:
  * a barrier after the world's compute writes, one render pass (planes, then instanced
- * spheres and boxes, then AABB lines), a copy of the colour image into a host-visible
- * buffer, and a wait on our own fence. Bodies are never looped over on the host, except
- * to read AABBs for the automatic camera and to know whether a plane exists. */
+ * spheres and boxes, then AABB lines, then contact lines), a copy of the colour image into
+ * a host-visible buffer, and a wait on our own fence. Bodies and contacts are never looped
+ * over on the host, except to read AABBs for the automatic camera and to know whether a
+ * plane exists. */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -39,6 +40,7 @@ tr_options tr_default_options(void)
         .camera = { .eye = { 10, 8, 14 }, .target = { 0, 0, 0 }, .up = { 0, 1, 0 },
                     .fov_y_degrees = 45.0f, .automatic = 1 },
         .color = TR_COLOR_BY_ID, .speed_scale = 10.0f, .show_aabbs = 0, .show_grid = 1,
+        .show_contacts = 0,
     };
     return o;
 }
@@ -163,6 +165,14 @@ static void fill_push(const tr_renderer* r, const tr_view* v, tr_push* p)
     p->mode[2] = r->options.show_grid ? TR_FLAG_GRID : 0;
 }
 
+/* What one frame draws besides the camera. */
+typedef struct tr_frame {
+    uint32_t slots;             /* body slots: instances of the body draws */
+    int default_plane;          /* the grid under the scene, for a world without planes */
+    uint32_t first_manifold;    /* the last step's manifolds in the manifold buffer */
+    uint32_t manifolds;         /* 0: no contact overlay */
+} tr_frame;
+
 static void push(const tr_renderer* r, const tr_push* p)
 {
     vkCmdPushConstants(r->cb, r->pipeline_layout,
@@ -178,11 +188,20 @@ static void draw_mesh(const tr_renderer* r, tr_push* p, uint32_t type, const tr_
     vkCmdDrawIndexed(r->cb, m->index_count, slots, m->first_index, m->vertex_offset, 0);
 }
 
-/* Everything inside the render pass. Planes go first: they fade out by blending over the
- * clear colour. Each draw covers every body slot; the shaders hide what is not theirs. */
-static void record_draws(const tr_renderer* r, const tr_view* v, uint32_t slots,
-                         int default_plane)
+/* The contact overlay last, over everything: one instance per manifold. */
+static void draw_contacts(const tr_renderer* r, tr_push* p, const tr_frame* f)
 {
+    vkCmdBindPipeline(r->cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->contact_pipeline);
+    p->mode[3] = f->first_manifold;
+    push(r, p);
+    vkCmdDraw(r->cb, TB_MAX_MANIFOLD_POINTS * TR_CONTACT_VERTICES_PER_POINT, f->manifolds, 0, 0);
+}
+
+/* Everything inside the render pass. Planes go first: they fade out by blending over the
+ * clear colour. Each body draw covers every body slot; the shaders hide what is not theirs. */
+static void record_draws(const tr_renderer* r, const tr_view* v, const tr_frame* f)
+{
+    uint32_t slots = f->slots;
     VkCommandBuffer cb = r->cb;
     VkViewport viewport = { 0, 0, (float)r->options.width, (float)r->options.height, 0, 1 };
     VkRect2D scissor = { { 0, 0 }, { r->options.width, r->options.height } };
@@ -197,7 +216,7 @@ static void record_draws(const tr_renderer* r, const tr_view* v, uint32_t slots,
         push(r, &p);
         vkCmdDraw(cb, 6, slots, 0, 0);
     }
-    if (default_plane) {
+    if (f->default_plane) {
         tr_push d = p;
         d.mode[2] |= TR_FLAG_DEFAULT_PLANE;
         push(r, &d);
@@ -215,9 +234,10 @@ static void record_draws(const tr_renderer* r, const tr_view* v, uint32_t slots,
         push(r, &p);
         vkCmdDraw(cb, 24, slots, 0, 0);
     }
+    if (f->manifolds) draw_contacts(r, &p, f);
 }
 
-static tb_result record(tr_renderer* r, const tr_view* v, uint32_t slots, int default_plane)
+static tb_result record(tr_renderer* r, const tr_view* v, const tr_frame* f)
 {
     VkCommandBuffer cb = r->cb;
     VkCommandBufferBeginInfo begin = {
@@ -246,7 +266,7 @@ static tb_result record(tr_renderer* r, const tr_view* v, uint32_t slots, int de
         .clearValueCount = 2, .pClearValues = clears,
     };
     vkCmdBeginRenderPass(cb, &pass, VK_SUBPASS_CONTENTS_INLINE);
-    record_draws(r, v, slots, default_plane);
+    record_draws(r, v, f);
     vkCmdEndRenderPass(cb);
     /* The render pass left the image in TRANSFER_SRC_OPTIMAL, its dependency ordering the
      * colour writes before this copy; rows come out top first, tightly packed. */
@@ -277,6 +297,25 @@ static tb_result submit_and_wait(tr_renderer* r)
     return tr_vk(r, vkResetFences(d, 1, &r->fence), "vkResetFences");
 }
 
+/* The last step's manifolds, bound for the overlay; f->manifolds stays 0 without any. */
+static tb_result prepare_contacts(tr_renderer* r, tr_frame* f)
+{
+    tb_vulkan_contacts c;
+    tb_result res = tb_world_vulkan_contacts(r->world, &c);
+    if (res) return tr_fail(r, res, "tb_world_vulkan_contacts: %s",
+                            tb_world_last_error(r->world));
+    if (c.count == 0) return TB_OK;
+    if (c.stride != sizeof(tb_gpu_manifold) || c.offset % c.stride != 0)
+        return tr_fail(r, TB_ERROR_DEVICE, "manifolds of %u bytes at offset %llu do not match "
+                       "the renderer's layout (%u bytes)", c.stride,
+                       (unsigned long long)c.offset, (unsigned)sizeof(tb_gpu_manifold));
+    res = tr_bind_contacts(r, &c);
+    if (res) return res;
+    f->first_manifold = (uint32_t)(c.offset / c.stride);
+    f->manifolds = c.count;
+    return TB_OK;
+}
+
 tb_result tr_render(tr_renderer* r)
 {
     if (!r) return TB_ERROR_INVALID_ARGUMENT;
@@ -287,12 +326,16 @@ tb_result tr_render(tr_renderer* r)
     if (res) return tr_fail(r, res, "tb_world_vulkan_bodies: %s", tb_world_last_error(r->world));
     res = tr_bind_bodies(r, &bodies);
     if (res) return res;
+    tr_frame frame = { .slots = bodies.slots };
+    if (r->options.show_contacts) res = prepare_contacts(r, &frame);
+    if (res) return res;
     tr_scene scene = { 0 };
     if (r->options.camera.automatic || r->options.show_grid) res = tr_scene_scan(r, &scene);
     if (res) return res;
     tr_view view;
     tr_view_resolve(&r->options, &scene, &view);
-    res = record(r, &view, bodies.slots, r->options.show_grid && !scene.has_plane);
+    frame.default_plane = r->options.show_grid && !scene.has_plane;
+    res = record(r, &view, &frame);
     if (!res) res = submit_and_wait(r);
     if (res) return res;
     r->last_camera = view.camera;

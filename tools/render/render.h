@@ -34,6 +34,9 @@ typedef struct tr_options {
     float speed_scale;         ///< m/s that maps to full red in TR_COLOR_BY_SPEED; default 10
     int show_aabbs;            ///< draw world AABBs as lines; default 0
     int show_grid;             ///< ground grid on planes (or at y = 0 without one); default 1
+    /// Draw the last step's contacts: each point a small magenta cross, its normal (from
+    /// body a towards b) a short yellow line; over everything (no depth test). Default 0.
+    int show_contacts;
 } tr_options;
 
 tr_options tr_default_options(void);

@@ -76,9 +76,13 @@ struct tr_renderer {
     VkDescriptorSet set;
     int set_written;
     uint64_t set_generation;
+    /* The manifold binding, written apart from the bodies' (only when contacts are shown). */
+    int contacts_written;
+    uint64_t contacts_generation;
+    VkBuffer contacts_buffer;
 
     VkPipelineLayout pipeline_layout;
-    VkPipeline mesh_pipeline, plane_pipeline, line_pipeline;
+    VkPipeline mesh_pipeline, plane_pipeline, line_pipeline, contact_pipeline;
 
     tr_camera last_camera;
     int has_frame;
@@ -109,9 +113,10 @@ uint32_t tr_cube_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_co
 #define TR_CUBE_VERTICES 24
 #define TR_CUBE_INDICES 36
 
-/* render_pipelines.c: descriptor set and the three pipelines */
+/* render_pipelines.c: descriptor set and the four pipelines */
 tb_result tr_pipelines_create(tr_renderer* r);
 tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* bodies);
+tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* contacts);
 void tr_pipelines_destroy(tr_renderer* r);
 
 /* render_camera.c: scene bounds and camera matrices */

@@ -1,6 +1,7 @@
-/* The descriptor set that shows the world's body arrays to the vertex shaders, and the three
- * graphics pipelines: instanced meshes, plane quads with grid, AABB lines. Viewport and
- * scissor are dynamic so that a size change keeps the pipelines. */
+/* The descriptor set that shows the world's body arrays (and its contact manifolds) to the
+ * vertex shaders, and the four graphics pipelines: instanced meshes, plane quads with grid,
+ * AABB lines, contact lines. Viewport and scissor are dynamic so that a size change keeps
+ * the pipelines. */
 #include <stddef.h>
 #include <string.h>
 
@@ -14,18 +15,27 @@ static const uint32_t BODY_BINDINGS[] = {
     TB_BIND_BODY_AABB_MIN, TB_BIND_BODY_AABB_MAX, TB_BIND_SHAPES,
 };
 #define BODY_BINDING_COUNT (sizeof BODY_BINDINGS / sizeof BODY_BINDINGS[0])
+/* Plus the manifolds, written only once contacts are shown: until then no bound pipeline
+ * uses the binding, so it may stay unwritten. */
+#define BINDING_COUNT (BODY_BINDING_COUNT + 1)
+
+static VkDescriptorSetLayoutBinding vertex_storage(uint32_t binding)
+{
+    return (VkDescriptorSetLayoutBinding){
+        .binding = binding, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+        .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_VERTEX_BIT,
+    };
+}
 
 static tb_result create_layouts(tr_renderer* r)
 {
-    VkDescriptorSetLayoutBinding bindings[BODY_BINDING_COUNT];
+    VkDescriptorSetLayoutBinding bindings[BINDING_COUNT];
     for (uint32_t i = 0; i < BODY_BINDING_COUNT; i++)
-        bindings[i] = (VkDescriptorSetLayoutBinding){
-            .binding = BODY_BINDINGS[i], .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-            .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_VERTEX_BIT,
-        };
+        bindings[i] = vertex_storage(BODY_BINDINGS[i]);
+    bindings[BODY_BINDING_COUNT] = vertex_storage(TB_BIND_MANIFOLDS);
     VkDescriptorSetLayoutCreateInfo set_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-        .bindingCount = BODY_BINDING_COUNT, .pBindings = bindings,
+        .bindingCount = BINDING_COUNT, .pBindings = bindings,
     };
     VkDevice d = r->dev.device;
     tb_result res = tr_vk(r, vkCreateDescriptorSetLayout(d, &set_info, NULL, &r->set_layout),
@@ -46,7 +56,7 @@ static tb_result create_layouts(tr_renderer* r)
 
 static tb_result create_descriptor_set(tr_renderer* r)
 {
-    VkDescriptorPoolSize size = { VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BODY_BINDING_COUNT };
+    VkDescriptorPoolSize size = { VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BINDING_COUNT };
     VkDescriptorPoolCreateInfo pool = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
         .maxSets = 1, .poolSizeCount = 1, .pPoolSizes = &size,
@@ -91,6 +101,29 @@ tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* b)
     return TB_OK;
 }
 
+/* Point the manifold binding at the world's manifold buffer, whole: the last step's half
+ * changes with every step (the shader gets its first manifold in the push constants), so
+ * the descriptor changes only when the world replaces the buffer. */
+tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* c)
+{
+    if (r->contacts_written && r->contacts_generation == c->generation &&
+        r->contacts_buffer == c->manifolds)
+        return TB_OK;
+    if (!c->manifolds)
+        return tr_fail(r, TB_ERROR_DEVICE, "the world has no GPU buffer for its manifolds");
+    VkDescriptorBufferInfo info = { c->manifolds, 0, VK_WHOLE_SIZE };
+    VkWriteDescriptorSet write = {
+        .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->set,
+        .dstBinding = TB_BIND_MANIFOLDS, .descriptorCount = 1,
+        .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &info,
+    };
+    vkUpdateDescriptorSets(r->dev.device, 1, &write, 0, NULL);
+    r->contacts_written = 1;
+    r->contacts_generation = c->generation;
+    r->contacts_buffer = c->manifolds;
+    return TB_OK;
+}
+
 static tb_result shader_module(tr_renderer* r, const char* name, VkShaderModule* out)
 {
     for (uint32_t i = 0; i < tr_shader_blob_count; i++) {
@@ -111,6 +144,7 @@ typedef struct pipeline_desc {
     VkPrimitiveTopology topology;
     int mesh_input;     /* tr_vertex attributes from binding 0 */
     int blend;          /* alpha blending over what is there (planes fading out) */
+    int overlay;        /* no depth test or write: drawn over everything (contacts) */
 } pipeline_desc;
 
 static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipeline* out)
@@ -155,7 +189,8 @@ static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipel
     };
     VkPipelineDepthStencilStateCreateInfo depth = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-        .depthTestEnable = VK_TRUE, .depthWriteEnable = VK_TRUE,
+        .depthTestEnable = p->overlay ? VK_FALSE : VK_TRUE,
+        .depthWriteEnable = p->overlay ? VK_FALSE : VK_TRUE,
         .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
     };
     /* Blending keeps the destination alpha (1 from the clear), so the frame stays opaque. */
@@ -198,24 +233,28 @@ static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipel
 tb_result tr_pipelines_create(tr_renderer* r)
 {
     static const pipeline_desc mesh = { "mesh.vert", "mesh.frag",
-                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 0 };
+                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 0, 0 };
     static const pipeline_desc plane = { "plane.vert", "plane.frag",
-                                         VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 0, 1 };
+                                         VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 0, 1, 0 };
     static const pipeline_desc line = { "aabb.vert", "line.frag",
-                                        VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0 };
+                                        VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0 };
+    static const pipeline_desc contact = { "contacts.vert", "line.frag",
+                                           VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 1 };
     tb_result res = create_layouts(r);
     if (!res) res = create_descriptor_set(r);
     if (!res) res = create_pipeline(r, &mesh, &r->mesh_pipeline);
     if (!res) res = create_pipeline(r, &plane, &r->plane_pipeline);
     if (!res) res = create_pipeline(r, &line, &r->line_pipeline);
+    if (!res) res = create_pipeline(r, &contact, &r->contact_pipeline);
     return res;
 }
 
 void tr_pipelines_destroy(tr_renderer* r)
 {
     VkDevice d = r->dev.device;
-    VkPipeline* pipelines[3] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline };
-    for (int i = 0; i < 3; i++) {
+    VkPipeline* pipelines[4] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
+                                 &r->contact_pipeline };
+    for (int i = 0; i < 4; i++) {
         if (*pipelines[i]) vkDestroyPipeline(d, *pipelines[i], NULL);
         *pipelines[i] = VK_NULL_HANDLE;
     }
@@ -227,4 +266,5 @@ void tr_pipelines_destroy(tr_renderer* r)
     r->set_layout = VK_NULL_HANDLE;
     r->set = VK_NULL_HANDLE;
     r->set_written = 0;
+    r->contacts_written = 0;
 }

@@ -2,10 +2,11 @@
  * in chunks with a progress line each, then prints speed, stage times, checks and a few
  * bodies' positions.
  *
- *   tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window]
+ *   tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window] [--contacts]
  *
  * --png writes a picture of the final frame (tools/render); --window shows the run live
- * when Tumble was built with GLFW and a display exists.
+ * when Tumble was built with GLFW and a display exists; --contacts draws the last step's
+ * contact points and normals in either.
  * The device is the library's choice: TUMBLE_DEVICE if set, else the best GPU.
  */
 #include "render.h"
@@ -28,11 +29,13 @@ typedef struct options {
     uint32_t steps;         /* 0: the scene's default */
     const char* png;        /* NULL: no picture */
     int window;             /* show the run in a window */
+    int contacts;           /* draw contact points and normals in the picture or window */
 } options;
 
 static void print_usage(FILE* f)
 {
-    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window]\n");
+    fprintf(f, "usage: tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window] "
+               "[--contacts]\n");
     scene_print_list(f);
 }
 
@@ -56,6 +59,9 @@ static int parse_args(int argc, char** argv, options* o)
             o->png = v;
         } else if (strcmp(a, "--window") == 0) {
             o->window = 1;
+            continue; /* takes no value */
+        } else if (strcmp(a, "--contacts") == 0) {
+            o->contacts = 1;
             continue; /* takes no value */
         } else {
             fprintf(stderr, "tumble-run: unknown option '%s'\n", a);
@@ -146,9 +152,11 @@ static int live_frame(void* user)
     return run->result == TB_OK;
 }
 
-static int step_in_window(tb_world* world, const scene* sc, uint32_t steps, double* wall_s)
+static int step_in_window(tb_world* world, const scene* sc, uint32_t steps, int contacts,
+                          double* wall_s)
 {
     tr_options ro = tr_default_options();
+    ro.show_contacts = contacts;
     tr_renderer* renderer = NULL;
     tb_result r = tr_create(world, &ro, &renderer);
     if (r != TB_OK) return fail(world, "tr_create", r);
@@ -164,9 +172,10 @@ static int step_in_window(tb_world* world, const scene* sc, uint32_t steps, doub
 }
 
 /* A picture of the world as it is now, framed automatically. */
-static int write_picture(tb_world* world, const char* path)
+static int write_picture(tb_world* world, const char* path, int contacts)
 {
     tr_options ro = tr_default_options();
+    ro.show_contacts = contacts;
     tr_renderer* renderer = NULL;
     tb_result r = tr_create(world, &ro, &renderer);
     if (r == TB_OK) r = tr_render(renderer);
@@ -236,7 +245,7 @@ static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t step
     printf("scene %s: %u bodies, %u steps of %.5f s\n", sc->name, count, steps, sc->dt);
 
     double wall_s = 0.0;
-    int code = o->window ? step_in_window(world, sc, steps, &wall_s)
+    int code = o->window ? step_in_window(world, sc, steps, o->contacts, &wall_s)
                          : step_in_chunks(world, sc, count ? ids : NULL, steps, &wall_s);
     if (!code) {
         printf("%.1f steps/s (%.3f s wall for %u steps)\n",
@@ -245,7 +254,7 @@ static int run_scene(tb_world* world, const scene* sc, uint32_t n, uint32_t step
     }
     if (!code) code = print_checks(world, sc, inst, steps);
     if (!code) code = print_bodies(world, ids, count);
-    if (!code && o->png) code = write_picture(world, o->png);
+    if (!code && o->png) code = write_picture(world, o->png, o->contacts);
     sc->destroy(inst);
     return code;
 }
@@ -268,7 +277,7 @@ static int create_world(const tb_world_def* def, int window, tb_world** out)
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, NULL, 0 };
+    options o = { NULL, 0, 0, NULL, 0, 0 };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = o.scene_name ? scene_find(o.scene_name) : scene_default();

@@ -22,13 +22,33 @@
 #define TR_FLAG_GRID          TR_U(1)  /* draw grid lines on planes */
 #define TR_FLAG_DEFAULT_PLANE TR_U(2)  /* one horizontal grid under the scene, not a body */
 
+/* Contact overlay (contacts.vert). One instance per manifold, LINE_LIST: first the normals
+ * of its TB_MAX_MANIFOLD_POINTS points (2 vertices each), then their crosses (3 axis-aligned
+ * segments, 6 vertices each), so a point's cross is drawn over the normals. */
+#define TR_CONTACT_VERTICES_PER_POINT 8
+/* Cross arm: this share of the distance from the eye to the point, so a cross keeps about
+ * the same size on screen (a few pixels) near and far. */
+#define TR_CONTACT_CROSS_SHARE 0.012
+/* Normal line length: this share of the eye-target distance, so it scales with the view. */
+#define TR_CONTACT_NORMAL_SHARE 0.03
+/* Colours in exact 8-bit steps (a test finds them in the image): points magenta, normals
+ * yellow; no lit surface, the sky or the AABB lines come out in either. */
+#define TR_CONTACT_POINT_R 255
+#define TR_CONTACT_POINT_G 0
+#define TR_CONTACT_POINT_B 255
+#define TR_CONTACT_NORMAL_R 255
+#define TR_CONTACT_NORMAL_G 230
+#define TR_CONTACT_NORMAL_B 0
+
 /* 128 bytes, the least every device allows; the same block in every stage. */
 TR_STRUCT(tr_push) {
     TR_MAT4(view_proj);   /* column-major, Vulkan clip space */
     TR_VEC4(eye);         /* xyz camera position, w far plane distance */
     TR_VEC4(target);      /* xyz point looked at, w speed that maps to full red */
     TR_VEC4(light);       /* xyz unit direction towards the light, w height of the default grid */
-    TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_*, w reserved */
+    TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_*, w first manifold
+                             of the last step (contact overlay: its index in the manifold
+                             buffer, whose halves alternate by step parity) */
 };
 
 #endif
