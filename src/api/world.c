@@ -10,6 +10,9 @@
 #define DEFAULT_MAX_SHAPES (1u << 20)
 #define INITIAL_SHAPE_CAPACITY 16u
 #define INITIAL_COLOUR_ROUNDS 16u
+#define MIN_COLOUR_ROUNDS 4u
+#define ROUNDS_SPARE 2u      /* rounds recorded beyond the colours a step used */
+#define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
 #define MAX_REDO 16
 
 static uint16_t next_world_serial(void)
@@ -278,20 +281,32 @@ static tb_result submit_steps(tb_world* w, uint32_t n)
 }
 
 /* A step the GPU abandoned: grow what overflowed so the step fits when run again. */
+/* Most pairs per half the pair buffers can hold on this device (manifolds are the largest). */
+static uint64_t pair_limit(const tb_world* w)
+{
+    uint64_t by_range = w->gpu.props.limits.maxStorageBufferRange / (2 * sizeof(tb_gpu_manifold));
+    return by_range < TB_MAX_PAIR_CAPACITY ? by_range : TB_MAX_PAIR_CAPACITY;
+}
+
+/* A step the GPU abandoned: grow what overflowed so the step fits when run again. Pairs get
+ * a quarter more than needed (at least a quarter more than before), within the device. */
 static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
 {
     tb_result r = TB_OK;
     if (c->state.x & TB_ABORT_PAIRS) {
-        uint64_t want = (uint64_t)c->state.w + c->state.w / 2 + 64;
-        if (want < 2ull * w->sim.pair_capacity) want = 2ull * w->sim.pair_capacity;
-        if (want > TB_MAX_PAIR_CAPACITY) want = TB_MAX_PAIR_CAPACITY;
-        if (c->state.w > TB_MAX_PAIR_CAPACITY)
-            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step found %u contact pairs, more "
-                           "than the %u the solver can index", c->state.w, TB_MAX_PAIR_CAPACITY);
+        uint64_t limit = pair_limit(w), need = c->state.w;
+        if (need > limit)
+            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step found %llu contact pairs, more "
+                           "than the %llu this device's buffers can hold",
+                           (unsigned long long)need, (unsigned long long)limit);
+        uint64_t want = need + need / 4 + 64;
+        uint64_t grown = (uint64_t)w->sim.pair_capacity + w->sim.pair_capacity / 4;
+        if (want < grown) want = grown;
+        if (want > limit) want = limit;
         r = tb_sim_reserve_pairs(&w->sim, &w->transfer, (uint32_t)want);
     }
     if (!r && (c->state.x & TB_ABORT_COLOURS)) {
-        uint32_t rounds = w->colour_rounds * 2;
+        uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
     }
     if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS)))
@@ -300,6 +315,20 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
     w->step_built = 0;
     w->buffer_generation++;
     return r;
+}
+
+/* Every recorded colouring round costs dispatches in the colouring and in each solver
+ * iteration, used or not: when a step used far fewer colours, record fewer rounds (with a
+ * little room; a step that needs more is run again with more). */
+static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
+{
+    uint32_t used = c->solver.x;
+    if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
+    if (used + SHRINK_SLACK < w->colour_rounds) {
+        uint32_t rounds = used + ROUNDS_SPARE;
+        w->colour_rounds = rounds > MIN_COLOUR_ROUNDS ? rounds : MIN_COLOUR_ROUNDS;
+        w->step_built = 0;
+    }
 }
 
 /* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
@@ -317,6 +346,7 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
     w->gpu_steps += *done;
     if (c->state.x) r = grow_for(w, c);
+    else fit_colour_rounds(w, c);
     return r;
 }
 
