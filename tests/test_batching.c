@@ -118,6 +118,10 @@ static void reset_counters(fixture* f, uint32_t pairs, uint32_t parity)
     uint32_t x = groups < max_x ? groups : max_x;
     c->pair_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     c->state = (tb_gpu_uvec4){ 0, parity, pairs, 0 };
+    /* The kernels see this step's manifolds as their own array: bind this half's. */
+    VkDeviceSize half = (VkDeviceSize)f->capacity * sizeof(tb_gpu_manifold);
+    tb_pipelines_bind_range(&f->w->pipelines, TB_BIND_MANIFOLDS, f->manifolds.buffer,
+                            parity * half, half);
 }
 
 /* A pass of a world shader dispatched per body; the caller destroys its pipeline. */

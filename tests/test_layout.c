@@ -68,7 +68,8 @@ static void test_bindings_distinct(void** state)
                       TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS, TB_BIND_BODY_PUSH, TB_BIND_BODY_CLAIM,
                       TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
-                      TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST };
+                      TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST,
+                      TB_BIND_PREV_MANIFOLDS };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);

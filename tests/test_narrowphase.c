@@ -38,9 +38,10 @@
 
 /* ---- plumbing: the kernel's buffers, one dispatch, read back ---------------------------- */
 
-enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_COUNT };
+enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS, BUF_COUNT };
 static const uint32_t rig_binding[BUF_COUNT] = { TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS,
-                                                 TB_BIND_PAIRS, TB_BIND_MANIFOLDS };
+                                                 TB_BIND_PAIRS, TB_BIND_MANIFOLDS,
+                                                 TB_BIND_PREV_MANIFOLDS };
 
 typedef struct rig {
     tb_world* w;
@@ -53,7 +54,9 @@ typedef struct rig {
     tb_gpu_counters counters;
     tb_gpu_uvec4* body_pairs;     /* MAX_SLOTS */
     tb_gpu_uvec4* pairs;          /* 2 * cap; half h starts at h * cap */
-    tb_gpu_manifold* manifolds;   /* 2 * cap */
+    tb_gpu_manifold* manifolds;   /* 2 * cap: the manifolds of each half's pairs; a run
+                                     binds its half's as this step's, the other's as last
+                                     step's */
     uint32_t made;                /* shapes made, to vary their materials */
 } rig;
 
@@ -63,13 +66,15 @@ static VkDeviceSize rig_bytes(const rig* r, int i)
     case BUF_COUNTERS: return sizeof(tb_gpu_counters);
     case BUF_BODY_PAIRS: return MAX_SLOTS * sizeof(tb_gpu_uvec4);
     case BUF_PAIRS: return 2 * (VkDeviceSize)r->cap * sizeof(tb_gpu_uvec4);
-    default: return 2 * (VkDeviceSize)r->cap * sizeof(tb_gpu_manifold);
+    default: return (VkDeviceSize)r->cap * sizeof(tb_gpu_manifold);
     }
 }
 
-static void* rig_host(rig* r, int i)
+static void* rig_host(rig* r, int i, uint32_t parity)
 {
-    void* host[BUF_COUNT] = { &r->counters, r->body_pairs, r->pairs, r->manifolds };
+    void* host[BUF_COUNT] = { &r->counters, r->body_pairs, r->pairs,
+                              r->manifolds + parity * r->cap,
+                              r->manifolds + (parity ^ 1u) * r->cap };
     return host[i];
 }
 
@@ -151,7 +156,7 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
     params.capacity.x = r->cap;
     params.contact.x = MARGIN;
     for (int i = 0; i < BUF_COUNT; i++)
-        memcpy((char*)r->up.mapped + rig_offset(r, i), rig_host(r, i), rig_bytes(r, i));
+        memcpy((char*)r->up.mapped + rig_offset(r, i), rig_host(r, i, parity), rig_bytes(r, i));
 
     VkCommandBuffer cb = r->cb;
     VkCommandBufferBeginInfo begin = { .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
@@ -187,7 +192,7 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
     vkEndCommandBuffer(cb);
     th_assert_ok(tb_gpu_submit_wait(&w->gpu, &cb, 1));
     for (int i = 0; i < BUF_COUNT; i++)
-        memcpy(rig_host(r, i), (const char*)r->down.mapped + rig_offset(r, i), rig_bytes(r, i));
+        memcpy(rig_host(r, i, parity), (const char*)r->down.mapped + rig_offset(r, i), rig_bytes(r, i));
 }
 
 static const tb_gpu_manifold* rig_manifold(const rig* r, uint32_t parity, uint32_t i)

@@ -209,6 +209,9 @@ static void test_growth_and_records(void** state)
     static faller f[TOTAL];
     add_fallers(w, s, f, 0, 10);
     step_fallers(w, f, 10, 5);
+    /* The first submission fits the recorded colouring rounds to the colours the scene uses
+     * (no contacts here: the fewest); the step records once more, then never again. */
+    step_fallers(w, f, 10, 1);
     tb_world_stats st0 = th_stats(w);
     assert_true(st0.body_capacity >= CAP && st0.body_capacity < TOTAL);
 

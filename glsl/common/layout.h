@@ -52,10 +52,12 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_LARGE_LIST      19 /* uint[]: bodies flagged large, in slot order */
 /* Pairs and contacts (sized by the pair capacity; the two halves alternate by step parity): */
 #define TB_BIND_PAIRS           20 /* uvec4[2 * pair cap]: x body a (owner), y body b, z colour, w unused */
-#define TB_BIND_MANIFOLDS       21 /* tb_gpu_manifold[2 * pair cap] */
+#define TB_BIND_MANIFOLDS       21 /* tb_gpu_manifold[pair cap]: this step's, indexed like its pairs */
 #define TB_BIND_CONSTRAINTS     22 /* tb_gpu_constraint[pair cap]: solver data of this step */
 #define TB_BIND_COLOUR_LIST     23 /* uint[pair cap]: pair indices (within the half) grouped by colour */
-#define TB_BIND_COUNT           24
+#define TB_BIND_PREV_MANIFOLDS  24 /* tb_gpu_manifold[pair cap]: last step's, indexed like its pairs
+                                      (the other half); the warm start reads them */
+#define TB_BIND_COUNT           25
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */

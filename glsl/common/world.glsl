@@ -30,6 +30,7 @@ layout(set = 0, binding = TB_BIND_LARGE_FLAGS, std430) buffer LargeFlags { uint 
 layout(set = 0, binding = TB_BIND_LARGE_LIST, std430) buffer LargeList { uint large_list[]; };
 layout(set = 0, binding = TB_BIND_PAIRS, std430) buffer Pairs { uvec4 pairs[]; };
 layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_manifold manifolds[]; };
+layout(set = 0, binding = TB_BIND_PREV_MANIFOLDS, std430) buffer PrevManifolds { tb_gpu_manifold prev_manifolds[]; };
 layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
 layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
 

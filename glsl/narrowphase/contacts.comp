@@ -7,7 +7,8 @@
 // features (warm start). Dispatched indirectly over counters.pair_dispatch.
 //
 // Pair p of this step is pairs[half * capacity + p] = (a, b, colour, -), half = the step
-// parity; its manifold goes to manifolds[half * capacity + p], normal from a to b. Every
+// parity; its manifold goes to manifolds[p], normal from a to b; last step's manifolds are
+// in prev_manifolds, indexed like last step's pairs. Every
 // contact routine sees the pair in one canonical order (by shape type, then body index),
 // so the points and feature keys depend only on the unordered pair; swapping a and b only
 // negates the normal.
@@ -50,7 +51,7 @@ uint pair_contacts(uint p)
     uint a = pair.x, b = pair.y;
     np_body body_a = np_load_body(a), body_b = np_load_body(b);
     bool swapped = body_a.type > body_b.type || (body_a.type == body_b.type && a > b);
-    np_target t = np_target_make(slot, a, b, half_index ^ 1u);
+    np_target t = np_target_make(p, a, b, half_index ^ 1u);
     // One call on selected operands (not one call per order): both orders run the very
     // same instructions, so their points agree to the bit.
     np_body first = swapped ? body_b : body_a, second = swapped ? body_a : body_b;

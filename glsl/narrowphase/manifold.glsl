@@ -49,7 +49,7 @@ vec3 np_signs(vec3 v)
 
 // The manifold being written, and last step's manifold of the same pair.
 struct np_target {
-    uint slot;            // index of this step's manifold (and pair)
+    uint slot;            // index of this step's manifold (its pair's index within the half)
     uint prev;            // index of last step's manifold of the pair, NP_NONE if it had none
     uint prev_count;
     uvec4 prev_features;
@@ -63,7 +63,7 @@ uint np_find_previous(uint a, uint b, uint prev_half)
     uvec2 run = prev_half == 0u ? owned.xy : owned.zw;
     uint first = prev_half * params.capacity.x + run.x;
     for (uint i = 0u; i < run.y; i++)
-        if (pairs[first + i].xy == uvec2(a, b)) return first + i;
+        if (pairs[first + i].xy == uvec2(a, b)) return run.x + i;
     return NP_NONE;
 }
 
@@ -75,8 +75,8 @@ np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
     t.prev_count = 0u;
     t.prev_features = uvec4(0u);
     if (t.prev != NP_NONE) {
-        t.prev_count = min(manifolds[t.prev].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-        t.prev_features = manifolds[t.prev].feature;
+        t.prev_count = min(prev_manifolds[t.prev].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+        t.prev_features = prev_manifolds[t.prev].feature;
     }
     return t;
 }
@@ -92,11 +92,11 @@ vec4 np_warm_impulse(np_target t, uint feature, vec3 point)
     uint nearest = NP_NONE;
     float best = params.contact.x * params.contact.x;
     for (uint j = 0u; j < t.prev_count; j++) {
-        if (t.prev_features[j] == feature) return vec4(manifolds[t.prev].impulse[j].xyz, 0.0);
-        vec3 d = manifolds[t.prev].point[j].xyz - point;
+        if (t.prev_features[j] == feature) return vec4(prev_manifolds[t.prev].impulse[j].xyz, 0.0);
+        vec3 d = prev_manifolds[t.prev].point[j].xyz - point;
         if (dot(d, d) <= best) { best = dot(d, d); nearest = j; }
     }
-    return nearest == NP_NONE ? vec4(0.0) : vec4(manifolds[t.prev].impulse[nearest].xyz, 0.0);
+    return nearest == NP_NONE ? vec4(0.0) : vec4(prev_manifolds[t.prev].impulse[nearest].xyz, 0.0);
 }
 
 // Point k: world point midway between the surfaces, separation along the normal.

@@ -33,7 +33,7 @@ void main()
     if (p < counters.state.z) {
         uint at = pair_half_base() + p;
         uvec4 pair = pairs[at];
-        points = min(manifolds[at].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+        points = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
         uint v = colour_claim_value(p, round), mark = colour_taken_mark(round);
         bool blocked = sub_round > 0u && (taken(pair.x, mark) || taken(pair.y, mark));
         if (points > 0u && pair.z == TB_NO_COLOUR && v != TB_CLAIM_FREE && !blocked) {

@@ -37,7 +37,7 @@ void main()
         uint at = pair_half_base() + p;
         uvec4 pair = pairs[at];
         uint v = colour_claim_value(p, round);
-        if (pair.z == TB_NO_COLOUR && manifolds[at].info.x > 0u && v != TB_CLAIM_FREE) {
+        if (pair.z == TB_NO_COLOUR && manifolds[p].info.x > 0u && v != TB_CLAIM_FREE) {
             bool holds_a = holds_claim(pair.x, v), holds_b = holds_claim(pair.y, v);
             won = holds_a && holds_b;
             if (won) pairs[at].z = round;

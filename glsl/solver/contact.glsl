@@ -43,15 +43,15 @@ void warm_start_contact(uint p)
 {
     uint at = pair_half_base() + p;
     uvec4 pair = pairs[at];
-    uint count = min(manifolds[at].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-    vec3 n = manifolds[at].normal.xyz;
+    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+    vec3 n = manifolds[p].normal.xyz;
     tb_gpu_constraint c = constraints[p];
     solver_body a = solver_body_load(pair.x), b = solver_body_load(pair.y);
     for (uint k = 0u; k < count; k++) {
-        vec4 impulse = manifolds[at].impulse[k];
+        vec4 impulse = manifolds[p].impulse[k];
         vec3 j = n * impulse.x + c.tangent1.xyz * impulse.y + c.tangent2.xyz * impulse.z;
         apply_impulse(a, b, c.p[k].ra.xyz, c.p[k].rb.xyz, j);
-        manifolds[at].impulse[k].w = 0.0;
+        manifolds[p].impulse[k].w = 0.0;
     }
     solver_body_store(pair.x, a);
     solver_body_store(pair.y, b);
@@ -62,14 +62,14 @@ void solve_contact(uint p)
 {
     uint at = pair_half_base() + p;
     uvec4 pair = pairs[at];
-    uint count = min(manifolds[at].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-    vec3 n = manifolds[at].normal.xyz;
+    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+    vec3 n = manifolds[p].normal.xyz;
     tb_gpu_constraint c = constraints[p];
     vec3 t1 = c.tangent1.xyz, t2 = c.tangent2.xyz;
     float friction = c.tangent1.w;
     solver_body a = solver_body_load(pair.x), b = solver_body_load(pair.y);
     vec4 impulse[TB_MAX_MANIFOLD_POINTS];
-    for (uint k = 0u; k < count; k++) impulse[k] = manifolds[at].impulse[k];
+    for (uint k = 0u; k < count; k++) impulse[k] = manifolds[p].impulse[k];
     for (uint k = 0u; k < count; k++) {
         vec3 ra = c.p[k].ra.xyz, rb = c.p[k].rb.xyz;
         float mass = c.p[k].ra.w;
@@ -96,7 +96,7 @@ void solve_contact(uint p)
         apply_impulse(a, b, ra, rb, t1 * d.x + t2 * d.y);
         impulse[k].yz = total;
     }
-    for (uint k = 0u; k < count; k++) manifolds[at].impulse[k] = impulse[k];
+    for (uint k = 0u; k < count; k++) manifolds[p].impulse[k] = impulse[k];
     solver_body_store(pair.x, a);
     solver_body_store(pair.y, b);
 }

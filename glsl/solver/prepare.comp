@@ -32,7 +32,7 @@ void main()
     uint p = pair_thread_index();
     if (p >= counters.state.z) return;
     uint at = pair_half_base() + p;
-    tb_gpu_manifold m = manifolds[at];
+    tb_gpu_manifold m = manifolds[p];
     uint count = min(m.info.x, uint(TB_MAX_MANIFOLD_POINTS));
     if (count == 0u) return;
     uvec4 pair = pairs[at];

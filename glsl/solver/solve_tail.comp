@@ -11,7 +11,7 @@ void main()
     if (step_aborted() || counters.solver.y == 0u || gl_LocalInvocationID.x != 0u) return;
     uint base = pair_half_base(), count = counters.state.z;
     for (uint p = 0u; p < count; p++)
-        if (pairs[base + p].z == TB_NO_COLOUR && manifolds[base + p].info.x > 0u)
+        if (pairs[base + p].z == TB_NO_COLOUR && manifolds[p].info.x > 0u)
             if (push.args.z != 0u) warm_start_contact(p);
             else solve_contact(p);
 }

@@ -54,15 +54,12 @@ tb_result tb_world_read_contacts(tb_world* w, tb_contact* out, uint32_t capacity
     uint32_t pairs = w->gpu_steps ? tb_sim_counters(&w->sim)->state.z : 0;
     if (pairs > w->sim.pair_capacity) pairs = 0;
     if (!pairs) return TB_OK;
-    uint32_t half = (uint32_t)((w->gpu_steps - 1) & 1);
     VkDeviceSize bytes = (VkDeviceSize)pairs * sizeof(tb_gpu_manifold);
     VkDeviceSize cbytes = (VkDeviceSize)pairs * sizeof(tb_gpu_constraint);
     tb_transfer* t = &w->transfer;
     tb_result r = tb_transfer_begin(t, bytes + cbytes + 64);
     if (r) return r;
-    const void* m = tb_transfer_download(t, w->sim.pair[TB_SIM_MANIFOLDS].buffer,
-                                         half * (VkDeviceSize)w->sim.pair_capacity *
-                                         sizeof(tb_gpu_manifold), bytes);
+    const void* m = tb_transfer_download(t, w->sim.pair[TB_SIM_MANIFOLDS].buffer, 0, bytes);
     const void* c = tb_transfer_download(t, w->sim.pair[TB_SIM_CONSTRAINTS].buffer, 0, cbytes);
     r = tb_transfer_end(t);
     if (!r) r = tb_gpu_submit_wait(&w->gpu, &t->cb, 1);

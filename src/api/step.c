@@ -21,6 +21,7 @@ static const kernel_def kernel_defs[TB_KERNEL_COUNT] = {
     [TB_KERNEL_GRID_PAIRS] = { "broadphase/grid_pairs", TB_WORKGROUP_SIZE },
     [TB_KERNEL_PAIR_CHECK] = { "broadphase/pair_check", TB_WORKGROUP_SIZE },
     [TB_KERNEL_CONTACTS] = { "narrowphase/contacts", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_KEEP_CONTACTS] = { "narrowphase/keep", TB_WORKGROUP_SIZE },
     [TB_KERNEL_APPLY_FORCES] = { "integrate/apply_forces", TB_WORKGROUP_SIZE },
     [TB_KERNEL_INTEGRATE] = { "integrate/integrate", TB_WORKGROUP_SIZE },
     [TB_KERNEL_STEP_END] = { "step/end", 1 },
@@ -162,6 +163,7 @@ tb_result tb_step_build(tb_world* w)
     prepare_stage(&b);
     single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
     solve_stage(&b);
+    single(&b, TB_KERNEL_KEEP_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/keep");
     single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");
     single(&b, TB_KERNEL_STEP_END, TB_DISPATCH_FIXED, "step/end");
     tb_pass_list_free(&b.list);

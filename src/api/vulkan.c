@@ -49,9 +49,8 @@ tb_result tb_world_vulkan_contacts(tb_world* w, tb_vulkan_contacts* out)
     if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
     uint32_t pairs = w->gpu_steps ? tb_sim_counters(&w->sim)->state.z : 0;
-    uint32_t half = (uint32_t)((w->gpu_steps + 1) & 1);   /* the half the last step wrote */
     out->manifolds = w->sim.pair[TB_SIM_MANIFOLDS].buffer;
-    out->offset = (VkDeviceSize)half * w->sim.pair_capacity * sizeof(tb_gpu_manifold);
+    out->offset = 0;
     out->count = pairs <= w->sim.pair_capacity ? pairs : 0;
     out->stride = sizeof(tb_gpu_manifold);
     out->generation = w->buffer_generation;

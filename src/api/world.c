@@ -284,7 +284,7 @@ static tb_result submit_steps(tb_world* w, uint32_t n)
 /* Most pairs per half the pair buffers can hold on this device (manifolds are the largest). */
 static uint64_t pair_limit(const tb_world* w)
 {
-    uint64_t by_range = w->gpu.props.limits.maxStorageBufferRange / (2 * sizeof(tb_gpu_manifold));
+    uint64_t by_range = w->gpu.props.limits.maxStorageBufferRange / sizeof(tb_gpu_constraint);
     return by_range < TB_MAX_PAIR_CAPACITY ? by_range : TB_MAX_PAIR_CAPACITY;
 }
 
@@ -324,9 +324,10 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 {
     uint32_t used = c->solver.x;
     if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
-    if (used + SHRINK_SLACK < w->colour_rounds) {
-        uint32_t rounds = used + ROUNDS_SPARE;
-        w->colour_rounds = rounds > MIN_COLOUR_ROUNDS ? rounds : MIN_COLOUR_ROUNDS;
+    uint32_t rounds = used + ROUNDS_SPARE > MIN_COLOUR_ROUNDS ? used + ROUNDS_SPARE
+                                                              : MIN_COLOUR_ROUNDS;
+    if (used + SHRINK_SLACK < w->colour_rounds && rounds < w->colour_rounds) {
+        w->colour_rounds = rounds;
         w->step_built = 0;
     }
 }

@@ -195,7 +195,13 @@ tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workg
 
 void tb_pipelines_bind(tb_pipelines* p, uint32_t binding, VkBuffer buffer)
 {
-    VkDescriptorBufferInfo info = { buffer, 0, VK_WHOLE_SIZE };
+    tb_pipelines_bind_range(p, binding, buffer, 0, VK_WHOLE_SIZE);
+}
+
+void tb_pipelines_bind_range(tb_pipelines* p, uint32_t binding, VkBuffer buffer,
+                             VkDeviceSize offset, VkDeviceSize range)
+{
+    VkDescriptorBufferInfo info = { buffer, offset, range };
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
         .dstSet = p->set, .dstBinding = binding, .descriptorCount = 1,

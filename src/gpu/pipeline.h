@@ -27,5 +27,8 @@ tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workg
 
 /// Point binding `binding` of the world's set at a whole buffer.
 void tb_pipelines_bind(tb_pipelines* p, uint32_t binding, VkBuffer buffer);
+/// Point it at `range` bytes from `offset` (a multiple of minStorageBufferOffsetAlignment).
+void tb_pipelines_bind_range(tb_pipelines* p, uint32_t binding, VkBuffer buffer,
+                             VkDeviceSize offset, VkDeviceSize range);
 
 #endif

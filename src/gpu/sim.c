@@ -17,6 +17,7 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = TB_BIND_MANIFOLDS,
     [TB_SIM_CONSTRAINTS] = TB_BIND_CONSTRAINTS, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
+    [TB_SIM_PREV_MANIFOLDS] = TB_BIND_PREV_MANIFOLDS,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -38,12 +39,14 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
     }
 }
 
-/* Pair arrays hold two halves (this step's and the previous one's), except the solver's. */
+/* Pairs hold two halves (this step's and the previous one's); manifolds keep last step's in
+ * an array of their own. */
 static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
 {
     switch (b) {
     case TB_SIM_PAIRS: return 2 * (VkDeviceSize)capacity * 16;
-    case TB_SIM_MANIFOLDS: return 2 * (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
+    case TB_SIM_MANIFOLDS:
+    case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     default: return (VkDeviceSize)capacity * 4;
     }
@@ -139,16 +142,20 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
                        "solver's colouring can index", pairs, TB_MAX_PAIR_CAPACITY);
     tb_buffer fresh[TB_SIM_PAIR_BUFFER_COUNT];
     memset(fresh, 0, sizeof fresh);
-    tb_result r = check_range(sim, pair_bytes(TB_SIM_MANIFOLDS, pairs), "contact manifolds");
+    tb_result r = check_range(sim, pair_bytes(TB_SIM_CONSTRAINTS, pairs), "contact constraints");
+    if (!r) r = check_range(sim, pair_bytes(TB_SIM_MANIFOLDS, pairs), "contact manifolds");
     if (!r) r = tb_transfer_begin(t, 0);
     if (r) return r;
     for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT && !r; b++) {
-        /* Both halves move to their new places: half h starts at h * capacity. */
-        VkDeviceSize half_old = pair_bytes(b, sim->pair_capacity) / 2;
-        VkDeviceSize half_new = pair_bytes(b, pairs) / 2;
-        VkBufferCopy regions[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
-        int halves = (b == TB_SIM_PAIRS || b == TB_SIM_MANIFOLDS) && half_old ? 2 : 0;
-        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), regions, halves, 0, &fresh[b]);
+        /* Both halves of the pairs move to their new places (half h starts at h * capacity);
+         * last step's manifolds keep their indices. */
+        VkDeviceSize old = pair_bytes(b, sim->pair_capacity);
+        VkDeviceSize half_old = old / 2, half_new = pair_bytes(b, pairs) / 2;
+        VkBufferCopy halves[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
+        VkBufferCopy whole = { 0, 0, old };
+        uint32_t n = !old ? 0 : b == TB_SIM_PAIRS ? 2 : b == TB_SIM_PREV_MANIFOLDS ? 1 : 0;
+        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), b == TB_SIM_PAIRS ? halves : &whole,
+                    n, 0, &fresh[b]);
     }
     r = finish(sim, t, sim->pair, fresh, pair_binding, TB_SIM_PAIR_BUFFER_COUNT, r);
     if (r) return r;

@@ -2,8 +2,8 @@
  * solver, the grid, and the pair, manifold and constraint arrays.
  *
  * Two capacities size them: the body capacity (equal to the body store's) and the pair
- * capacity. Growth replaces buffers (keeping what the next step needs: the pair and
- * manifold halves and the per-body pair ranges, for warm starting), re-points the
+ * capacity. Growth replaces buffers (keeping what the next step needs for warm starting:
+ * both halves of the pairs, last step's manifolds and the per-body pair ranges), re-points the
  * descriptor set and makes the step graph record again.
  */
 #ifndef TB_SIM_H
@@ -22,7 +22,7 @@ typedef enum tb_sim_body_buffer {
 
 typedef enum tb_sim_pair_buffer {
     TB_SIM_PAIRS, TB_SIM_MANIFOLDS, TB_SIM_CONSTRAINTS, TB_SIM_COLOUR_LIST,
-    TB_SIM_PAIR_BUFFER_COUNT
+    TB_SIM_PREV_MANIFOLDS, TB_SIM_PAIR_BUFFER_COUNT
 } tb_sim_pair_buffer;
 
 typedef struct tb_sim {

@@ -103,7 +103,7 @@ static void automatic_camera(const tr_options* o, const tr_scene* s, tr_view* v)
     double half_y = 0.5 * o->camera.fov_y_degrees * DEG;
     double half_x = atan(tan(half_y) * aspect);
     double distance = 1.05 * radius / sin(fmin(half_x, half_y));
-    double dir[3] = { 1.0, 0.8, 1.4 };
+    double dir[3] = { 1.0, 1.7, 1.3 };   /* from above: the inside of a container shows */
     normalize3(dir);
     tr_camera* c = &v->camera;
     *c = o->camera;
