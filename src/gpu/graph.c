@@ -21,16 +21,15 @@ static void destroy_queries(tb_graph* graph)
     graph->queries = VK_NULL_HANDLE;
 }
 
-static void release_stage(tb_graph* graph, tb_stage* stage)
+static void release_stage(tb_stage* stage)
 {
-    if (stage->pipeline) vkDestroyPipeline(graph->gpu->device, stage->pipeline, NULL);
     free(stage->passes);
     memset(stage, 0, sizeof *stage);
 }
 
 void tb_graph_clear(tb_graph* graph)
 {
-    for (uint32_t i = 0; i < graph->count; i++) release_stage(graph, &graph->stages[i]);
+    for (uint32_t i = 0; i < graph->count; i++) release_stage(&graph->stages[i]);
     graph->count = 0;
     tb_graph_invalidate(graph);
 }
@@ -48,7 +47,7 @@ tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage)
 {
     if (graph->count == TB_MAX_STAGES || at > graph->count) {
         tb_stage dropped = *stage;
-        release_stage(graph, &dropped);
+        release_stage(&dropped);
         return tb_fail(graph->gpu->diag, TB_ERROR_CAPACITY,
                        "the step graph holds at most %d stages", TB_MAX_STAGES);
     }
@@ -57,13 +56,6 @@ tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage)
     graph->count++;
     tb_graph_invalidate(graph);
     return TB_OK;
-}
-
-tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatch_rule rule)
-{
-    tb_stage stage = { .name = shader, .rule = rule };
-    tb_result r = tb_pipeline_create(graph->pipelines, shader, TB_WORKGROUP_SIZE, &stage.pipeline);
-    return r ? r : tb_graph_insert(graph, graph->count, &stage);
 }
 
 tb_result tb_graph_append_passes(tb_graph* graph, const char* name, tb_pass_list* list)
@@ -167,15 +159,7 @@ static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, 
                                        .pLabelName = s->name };
         graph->gpu->begin_label(cb, &label);
     }
-    if (s->pass_count) {
-        tb_passes_record(cb, graph->pipelines->layout, s->passes, s->pass_count, params);
-    } else {
-        tb_pass one = { .pipeline = s->pipeline, .rule = s->rule, .indirect = s->indirect,
-                        .indirect_offset = s->indirect_offset, .push_size = s->push_size };
-        memcpy(one.groups, s->groups, sizeof one.groups);
-        memcpy(one.push, s->push, sizeof one.push);
-        record_pass(cb, graph->pipelines->layout, &one, params);
-    }
+    tb_passes_record(cb, graph->pipelines->layout, s->passes, s->pass_count, params);
     if (graph->gpu->end_label) graph->gpu->end_label(cb);
     if (graph->queries)
         vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, graph->queries, i + 1);

@@ -45,18 +45,11 @@ void tb_pass_list_free(tb_pass_list* list);
 void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass* passes,
                       uint32_t count, VkBuffer params);
 
-/// A stage of the step: one pass (its pipeline owned by the graph) or, with pass_count > 0,
-/// a sequence of passes (the graph owns the array, not their pipelines) timed as one stage.
+/// A stage of the step: a sequence of passes timed as one (the graph owns the array, not
+/// the passes' pipelines).
 typedef struct tb_stage {
-    const char* name;          ///< shader path, also the stats key
-    VkPipeline pipeline;       ///< owned by the graph once inserted
-    tb_dispatch_rule rule;
-    uint32_t groups[3];
-    VkBuffer indirect;
-    VkDeviceSize indirect_offset;
-    uint32_t push_size;
-    unsigned char push[TB_PUSH_CONSTANT_BYTES];
-    tb_pass* passes;           ///< NULL: the single dispatch above
+    const char* name;          ///< the stats key, e.g. "broadphase/grid"
+    tb_pass* passes;
     uint32_t pass_count;
 } tb_stage;
 
@@ -79,10 +72,8 @@ typedef struct tb_graph {
 tb_result tb_graph_init(tb_graph* graph, tb_gpu* gpu, tb_pipelines* pipelines);
 void tb_graph_destroy(tb_graph* graph);
 
-/// Insert a stage before position `at` (count appends). The graph takes its pipeline.
+/// Insert a stage before position `at` (count appends). The graph takes its pass array.
 tb_result tb_graph_insert(tb_graph* graph, uint32_t at, const tb_stage* stage);
-/// Build the pipeline of an embedded shader and append it as a stage.
-tb_result tb_graph_append_shader(tb_graph* graph, const char* shader, tb_dispatch_rule rule);
 
 /// Append a stage made of a pass list; the graph takes the list's array (list is emptied).
 tb_result tb_graph_append_passes(tb_graph* graph, const char* name, tb_pass_list* list);
