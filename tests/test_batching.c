@@ -401,7 +401,7 @@ static colouring_summary check_counters(fixture* f, const graph* g, const uint32
         assert_int_equal(c->colour[k].z, batches);
         uint32_t groups = (count[k] + TB_SOLVER_WORKGROUP_SIZE - 1) / TB_SOLVER_WORKGROUP_SIZE;
         const tb_gpu_uvec4* d = &c->colour_dispatch[k];
-        assert_true(d->x <= TB_SOLVER_DISPATCH_MAX_X && d->z == 1);
+        assert_true(d->x <= TB_DISPATCH_MAX_X && d->z == 1);
         assert_true((uint64_t)d->x * d->y >= groups);
         assert_true(groups == 0 ? d->x == 0 : (uint64_t)d->x * (d->y - 1) < groups);
         if (k >= rounds) assert_int_equal(count[k], 0);

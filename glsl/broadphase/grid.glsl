@@ -43,9 +43,8 @@ bool grid_is_large(uint body, float cell)
 bool aabbs_touch(uint a, uint b)
 {
     float m = params.contact.x;
-    bvec3 apart = bvec3(greaterThan(body_aabb_min[a].xyz - m, body_aabb_max[b].xyz)) ;
-    bvec3 apart2 = bvec3(greaterThan(body_aabb_min[b].xyz - m, body_aabb_max[a].xyz));
-    return !any(apart) && !any(apart2);
+    return !any(greaterThan(body_aabb_min[a].xyz - m, body_aabb_max[b].xyz)) &&
+           !any(greaterThan(body_aabb_min[b].xyz - m, body_aabb_max[a].xyz));
 }
 
 #endif

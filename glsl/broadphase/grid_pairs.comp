@@ -22,7 +22,7 @@ uint pair_found;
 void report(uint owner, uint other, bool write)
 {
     if (write) {
-        uint at = current_half() * params.capacity.x + pair_base + pair_found;
+        uint at = pair_half_base() + pair_base + pair_found;
         pairs[at] = uvec4(owner, other, TB_NO_COLOUR, 0u);
     }
     pair_found++;

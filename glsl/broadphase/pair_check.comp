@@ -13,7 +13,5 @@ void main()
         counters.state.x |= TB_ABORT_PAIRS;
         return;
     }
-    uint groups = (total + TB_WORKGROUP_SIZE - 1u) / TB_WORKGROUP_SIZE;
-    uint x = min(groups, 65535u);
-    counters.pair_dispatch = uvec4(x, x == 0u ? 1u : (groups + x - 1u) / x, 1u, 0u);
+    counters.pair_dispatch = dispatch_covering(total, TB_WORKGROUP_SIZE);
 }

@@ -92,11 +92,12 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 /* Threads per workgroup of per-body stages. */
 #define TB_WORKGROUP_SIZE       64
-/* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for
- * it. Workgroups in x stay within Vulkan's guaranteed maxComputeWorkGroupCount[0]; larger
- * colours get rows in y (index = (group.y * num_groups.x + group.x) * size + local). */
+/* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
-#define TB_SOLVER_DISPATCH_MAX_X 65535
+/* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed
+ * maxComputeWorkGroupCount[0]; more get rows in y (index = (group.y * num_groups.x +
+ * group.x) * size + local). */
+#define TB_DISPATCH_MAX_X       65535
 
 /* Parameters of the step, written by the host before a submission (never mid-step). */
 TB_STRUCT(tb_gpu_params) {

@@ -41,10 +41,19 @@ uint body_thread_index()
     return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
 }
 
-// Threads of indirect dispatches laid out the same way (rows of workgroups).
-uint flat_thread_index()
+// Per-pair (and per-colour) indirect dispatches are laid out the same way.
+uint pair_thread_index()
 {
     return body_thread_index();
+}
+
+// The VkDispatchIndirectCommand covering `threads` threads in workgroups of `group_size`,
+// in rows of at most TB_DISPATCH_MAX_X workgroups.
+uvec4 dispatch_covering(uint threads, uint group_size)
+{
+    uint groups = (threads + group_size - 1u) / group_size;
+    uint x = min(groups, uint(TB_DISPATCH_MAX_X));
+    return uvec4(x, x == 0u ? 1u : (groups + x - 1u) / x, 1u, 0u);
 }
 
 // The step was abandoned (a buffer overflowed): no stage may change anything.
@@ -53,10 +62,16 @@ bool step_aborted()
     return counters.state.x != 0u;
 }
 
-// Base index of this step's half of the pair, manifold and per-body pair arrays.
+// This step's half of the pair array and of the per-body pair ranges: the step parity.
 uint current_half()
 {
     return counters.state.y & 1u;
+}
+
+// First element of this step's half of the pair array.
+uint pair_half_base()
+{
+    return current_half() * params.capacity.x;
 }
 
 bool body_is(uint i, uint flags)

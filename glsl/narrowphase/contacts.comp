@@ -19,12 +19,6 @@
 #include "box_plane.glsl"
 #include "box_box.glsl"
 
-uint pair_thread_index()
-{
-    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
-}
-
 // Shape types in canonical order: sphere < box < plane, so each routine knows which shape
 // comes first. Plane against plane never arrives (planes are static); it gets no points.
 uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
@@ -45,13 +39,11 @@ uint np_collide(np_target t, np_body first, np_body second, float margin, out ve
 // Writes the manifold of pair p; returns its point count.
 uint pair_contacts(uint p)
 {
-    uint half_index = counters.state.y & 1u;
-    uint slot = half_index * params.capacity.x + p;
-    uvec2 pair = pairs[slot].xy;
+    uvec2 pair = pairs[pair_half_base() + p].xy;
     uint a = pair.x, b = pair.y;
     np_body body_a = np_load_body(a), body_b = np_load_body(b);
     bool swapped = body_a.type > body_b.type || (body_a.type == body_b.type && a > b);
-    np_target t = np_target_make(p, a, b, half_index ^ 1u);
+    np_target t = np_target_make(p, a, b, current_half() ^ 1u);
     // One call on selected operands (not one call per order): both orders run the very
     // same instructions, so their points agree to the bit.
     np_body first = swapped ? body_b : body_a, second = swapped ? body_a : body_b;

@@ -8,7 +8,7 @@
 
 void main()
 {
-    uint p = flat_thread_index();
+    uint p = pair_thread_index();
     if (step_aborted() || p >= counters.state.z) return;
     prev_manifolds[p] = manifolds[p];
 }

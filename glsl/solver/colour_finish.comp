@@ -4,7 +4,7 @@
 // - colour[c].y = first index of colour c in the colour list (exclusive scan of the counts,
 //   the same the claim passes wrote for the recorded rounds), colour[c].z = batches before c;
 // - colour_dispatch[c] = workgroups of TB_SOLVER_WORKGROUP_SIZE covering colour[c].x
-//   threads, rows in y beyond TB_SOLVER_DISPATCH_MAX_X;
+//   threads, rows in y beyond TB_DISPATCH_MAX_X;
 // - solver.x colours used, solver.y constraints left uncoloured, solver.z batches: a colour
 //   is cut into batches of the subgroup width, each solved by one subgroup.
 // Constraints left uncoloured when fewer than TB_MAX_COLOURS rounds were recorded abandon the
@@ -19,13 +19,6 @@ uint batches_of(uint constraints)
     return (constraints + SUBGROUP_SIZE - 1u) / SUBGROUP_SIZE;
 }
 
-uvec4 dispatch_covering(uint threads)
-{
-    uint groups = (threads + TB_SOLVER_WORKGROUP_SIZE - 1u) / TB_SOLVER_WORKGROUP_SIZE;
-    uint x = min(groups, uint(TB_SOLVER_DISPATCH_MAX_X));
-    return uvec4(x, x == 0u ? 1u : (groups + x - 1u) / x, 1u, 0u);
-}
-
 void write_colour(uint c)
 {
     uint first = 0u, batches = 0u;
@@ -36,7 +29,7 @@ void write_colour(uint c)
     }
     counters.colour[c].y = first;
     counters.colour[c].z = batches;
-    counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x);
+    counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x, TB_SOLVER_WORKGROUP_SIZE);
 }
 
 void write_totals()

@@ -31,19 +31,6 @@ layout(push_constant) uniform Push { tb_gpu_push push; };
 
 const uint TB_CLAIM_FREE = 0xffffffffu;
 
-// Per-pair dispatches (counters.pair_dispatch) may be laid out in rows of workgroups.
-uint pair_thread_index()
-{
-    uint group = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-    return group * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
-}
-
-// First element of this step's half of the pair, manifold arrays.
-uint pair_half_base()
-{
-    return (counters.state.y & 1u) * params.capacity.x;
-}
-
 // A bijection on TB_COLOUR_INDEX_BITS bits, different each round, that scatters neighbouring
 // indices: xor with a constant, odd multipliers (invertible modulo 2^k) and x ^ (x >> s) are
 // all invertible.
