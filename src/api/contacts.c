@@ -1,5 +1,4 @@
 /* Reading the last step's contacts back from the GPU. */
-#include <math.h>
 #include <string.h>
 
 #include "api/world.h"
@@ -10,28 +9,15 @@ static tb_body_id id_of(const tb_world* w, uint32_t slot)
     return (tb_body_id){ slot + 1, w->serial, w->bodies[slot].generation };
 }
 
-/* The two friction directions the solver uses for a normal: any deterministic basis does
- * for the read-back as long as it spans the tangent plane; the solver stores its own. */
-static void tangent_basis(tb_vec3 n, tb_vec3* t1, tb_vec3* t2)
-{
-    if (fabsf(n.x) >= 0.57735f) *t1 = (tb_vec3){ n.y, -n.x, 0.0f };
-    else *t1 = (tb_vec3){ 0.0f, n.z, -n.y };
-    float len = sqrtf(t1->x * t1->x + t1->y * t1->y + t1->z * t1->z);
-    *t1 = (tb_vec3){ t1->x / len, t1->y / len, t1->z / len };
-    *t2 = (tb_vec3){ n.y * t1->z - n.z * t1->y, n.z * t1->x - n.x * t1->z, n.x * t1->y - n.y * t1->x };
-}
-
+/* A pair with points has solver data (solver/prepare): its friction directions turn the
+ * tangent impulses into a world vector. */
 static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu_constraint* c,
                        tb_contact* out, uint32_t room)
 {
     uint32_t points = m->info.x < TB_MAX_MANIFOLD_POINTS ? m->info.x : TB_MAX_MANIFOLD_POINTS;
     tb_vec3 n = { m->normal.x, m->normal.y, m->normal.z };
-    tb_vec3 t1, t2;
-    tangent_basis(n, &t1, &t2);
-    if (c) {
-        t1 = (tb_vec3){ c->tangent1.x, c->tangent1.y, c->tangent1.z };
-        t2 = (tb_vec3){ c->tangent2.x, c->tangent2.y, c->tangent2.z };
-    }
+    tb_vec3 t1 = { c->tangent1.x, c->tangent1.y, c->tangent1.z };
+    tb_vec3 t2 = { c->tangent2.x, c->tangent2.y, c->tangent2.z };
     for (uint32_t k = 0; k < points && k < room; k++) {
         const tb_gpu_vec4* p = &m->point[k];
         const tb_gpu_vec4* j = &m->impulse[k];
