@@ -7,8 +7,6 @@
  * solver, so a body resting on another has its weight cancelled by the contact in the same
  * step and does not sink or jitter.
  */
-#include <string.h>
-
 #include "api/world.h"
 
 typedef struct kernel_def { const char* shader; uint32_t workgroup; } kernel_def;
@@ -55,11 +53,8 @@ static void add(builder* b, tb_kernel k, tb_dispatch_rule rule, VkDeviceSize ind
                 uint32_t colour, uint32_t iteration, uint32_t mode)
 {
     if (b->r) return;
-    tb_pass pass = { .pipeline = b->w->kernels[k], .rule = rule, .groups = { 1, 1, 1 },
-                     .indirect = b->w->sim.counters.buffer, .indirect_offset = indirect_offset };
-    tb_gpu_push push = { { colour, iteration, mode, 0 } };
-    pass.push_size = sizeof push;
-    memcpy(pass.push, &push, sizeof push);
+    tb_pass pass = tb_pass_with_args(b->w->kernels[k], rule, b->w->sim.counters.buffer,
+                                     indirect_offset, colour, iteration, mode);
     b->r = tb_pass_list_add(&b->list, &b->w->diag, &pass);
 }
 

@@ -65,6 +65,17 @@ tb_result tb_graph_append_passes(tb_graph* graph, const char* name, tb_pass_list
     return tb_graph_insert(graph, graph->count, &stage);
 }
 
+tb_pass tb_pass_with_args(VkPipeline pipeline, tb_dispatch_rule rule, VkBuffer indirect,
+                          VkDeviceSize offset, uint32_t x, uint32_t y, uint32_t z)
+{
+    tb_pass pass = { .pipeline = pipeline, .rule = rule, .groups = { 1, 1, 1 },
+                     .indirect = indirect, .indirect_offset = offset,
+                     .push_size = sizeof(tb_gpu_push) };
+    tb_gpu_push push = { { x, y, z, 0 } };
+    memcpy(pass.push, &push, sizeof push);
+    return pass;
+}
+
 tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pass)
 {
     if (list->count == list->capacity) {

@@ -36,6 +36,11 @@ typedef struct tb_pass_list {
     uint32_t count, capacity;
 } tb_pass_list;
 
+/// A pass of the step's kernels: one workgroup when FIXED, `indirect` at `offset` when
+/// INDIRECT, and the push constants tb_gpu_push (x, y, z) of layout.h.
+tb_pass tb_pass_with_args(VkPipeline pipeline, tb_dispatch_rule rule, VkBuffer indirect,
+                          VkDeviceSize offset, uint32_t x, uint32_t y, uint32_t z);
+
 /// Append a pass (copied). Fails only when host memory runs out.
 tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pass);
 void tb_pass_list_free(tb_pass_list* list);

@@ -53,12 +53,8 @@ static tb_result add(const tb_solver* s, tb_pass_list* list, const tb_pass* pass
 /* A pass over this step's pairs with push arguments (x, y, z). */
 static tb_pass per_pair(VkPipeline pipeline, VkBuffer counters, uint32_t x, uint32_t y, uint32_t z)
 {
-    tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_INDIRECT, .indirect = counters,
-                     .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET,
-                     .push_size = sizeof(tb_gpu_push) };
-    tb_gpu_push push = { { x, y, z, 0 } };
-    memcpy(pass.push, &push, sizeof push);
-    return pass;
+    return tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
+                             TB_COUNTERS_PAIR_DISPATCH_OFFSET, x, y, z);
 }
 
 static tb_result check_rounds(const tb_solver* s, uint32_t rounds)
@@ -94,14 +90,14 @@ static tb_result record_iteration(const tb_solver* s, tb_pass_list* list, VkBuff
 {
     tb_result r = TB_OK;
     for (uint32_t colour = 0; colour < rounds && !r; colour++) {
-        tb_pass solve = per_pair(s->solve, counters, colour, iteration, warm);
-        solve.indirect_offset = TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour;
+        tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
+                                          TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour,
+                                          colour, iteration, warm);
         r = add(s, list, &solve);
     }
     if (!r && rounds == TB_MAX_COLOURS) {
-        tb_pass tail = per_pair(s->solve_tail, counters, 0, iteration, warm);
-        tail.rule = TB_DISPATCH_FIXED;
-        tail.groups[0] = tail.groups[1] = tail.groups[2] = 1;
+        tb_pass tail = tb_pass_with_args(s->solve_tail, TB_DISPATCH_FIXED, counters, 0, 0,
+                                         iteration, warm);
         r = add(s, list, &tail);
     }
     return r;
