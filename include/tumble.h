@@ -206,6 +206,7 @@ typedef enum tb_shape_type {
     TB_SHAPE_SPHERE = 0,
     TB_SHAPE_BOX = 1,
     TB_SHAPE_PLANE = 2,
+    TB_SHAPE_HULL = 3,
     TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
 } tb_shape_type;
 
@@ -236,6 +237,34 @@ TB_API tb_result tb_shape_create_box(tb_world* world, const tb_shape_def* def,
 /// may use them.
 TB_API tb_result tb_shape_create_plane(tb_world* world, const tb_shape_def* def, tb_vec3 normal,
                                        float offset, tb_shape_id* out);
+/// Convex hull of `count` points (xyz in m, in the frame the caller gives them). Duplicate
+/// and (nearly) coplanar points are fine; coplanar faces merge into polygons. Fails with
+/// TB_ERROR_INVALID_ARGUMENT on non-finite points or when the points span no volume (fewer
+/// than 4 points off one plane), and when the hull exceeds the GPU limits (256 vertices,
+/// 256 faces, 32 vertices on one face).
+///
+/// A hull body turns about its centre of mass. Its body frame is the hull's principal
+/// frame: origin at the centre of mass, axes along the principal axes of inertia, so poses
+/// set and read through the API are of that frame. tb_shape_get_hull_info says where that
+/// frame lies among the input points.
+TB_API tb_result tb_shape_create_hull(tb_world* world, const tb_shape_def* def,
+                                      const tb_vec3* points, uint32_t count, tb_shape_id* out);
+
+/// What a hull became.
+typedef struct tb_hull_info {
+    uint32_t vertex_count, face_count, edge_count;
+    float volume;             ///< m^3
+    tb_vec3 center_of_mass;   ///< in the frame of the input points
+    tb_quat principal_axes;   ///< rotation from the body frame to the input points' frame
+    tb_vec3 unit_inertia;     ///< principal moments of inertia per kg, about the body axes
+} tb_hull_info;
+
+TB_API tb_result tb_shape_get_hull_info(const tb_world* world, tb_shape_id shape,
+                                        tb_hull_info* out);
+/// Vertices of a hull in its body frame: writes at most `capacity` to `out` (may be NULL
+/// with capacity 0) and the vertex count to *count.
+TB_API tb_result tb_shape_get_hull_vertices(const tb_world* world, tb_shape_id shape,
+                                            tb_vec3* out, uint32_t capacity, uint32_t* count);
 /// Destroy a shape. Fails with TB_ERROR_IN_USE while a body uses it.
 TB_API tb_result tb_shape_destroy(tb_world* world, tb_shape_id shape);
 TB_API int tb_shape_is_valid(const tb_world* world, tb_shape_id shape);

@@ -39,12 +39,13 @@ static void test_params_layout(void** state)
 static void test_shape_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_shape), 80);
+    assert_int_equal(sizeof(tb_gpu_shape), 96);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_center), 0);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_half), 16);
     assert_int_equal(offsetof(tb_gpu_shape, params), 32);
     assert_int_equal(offsetof(tb_gpu_shape, info), 48);
     assert_int_equal(offsetof(tb_gpu_shape, material), 64);
+    assert_int_equal(offsetof(tb_gpu_shape, hull), 80);
     /* std430 array stride of the struct is its size rounded to 16. */
     assert_int_equal(sizeof(tb_gpu_shape) % 16, 0);
 }
@@ -86,7 +87,7 @@ static void test_contact_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_counters, pair_dispatch), TB_COUNTERS_PAIR_DISPATCH_OFFSET);
     assert_int_equal(offsetof(tb_gpu_counters, colour_dispatch), TB_COUNTERS_COLOUR_DISPATCH_OFFSET);
     assert_int_equal(sizeof(tb_gpu_counters) % 16, 0);
-    assert_int_equal(sizeof(tb_gpu_manifold), 16 * (3 + 2 * TB_MAX_MANIFOLD_POINTS));
+    assert_int_equal(sizeof(tb_gpu_manifold), 16 * (4 + 2 * TB_MAX_MANIFOLD_POINTS));
     assert_int_equal(offsetof(tb_gpu_manifold, point), 32);
     assert_int_equal(offsetof(tb_gpu_manifold, impulse), 32 + 16 * TB_MAX_MANIFOLD_POINTS);
     assert_int_equal(sizeof(tb_gpu_constraint), 32 + 48 * TB_MAX_MANIFOLD_POINTS);

@@ -57,7 +57,15 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_COLOUR_LIST     23 /* uint[pair cap]: pair indices (within the half) grouped by colour */
 #define TB_BIND_PREV_MANIFOLDS  24 /* tb_gpu_manifold[pair cap]: last step's, indexed like its pairs
                                       (the other half); the warm start reads them */
-#define TB_BIND_COUNT           25
+/* Convex hulls (sized by the hull data of the live shapes; tb_gpu_shape.hull locates a hull): */
+#define TB_BIND_HULL_VECTORS    25 /* vec4[]: each hull's vertices (xyz, w 0), then its face planes
+                                      (xyz outward unit normal, w offset: dot(n, x) = w on the face) */
+#define TB_BIND_HULL_TOPOLOGY   26 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
+                                      f0 | f1 << 16: the faces left and right of v0 -> v1 seen from
+                                      outside), then its faces (first | count << 16: the face's
+                                      vertex indices at topology[face base + first ...], counter-
+                                      clockwise seen from outside), then those indices */
+#define TB_BIND_COUNT           27
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -86,6 +94,14 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_GPU_SHAPE_SPHERE     TB_U(0)
 #define TB_GPU_SHAPE_BOX        TB_U(1)
 #define TB_GPU_SHAPE_PLANE      TB_U(2)
+#define TB_GPU_SHAPE_HULL       TB_U(3)
+
+/* Convex hull limits: the GPU walks vertices, faces and edges per pair and clips an incident
+ * face polygon in registers, so their sizes are bounded. tb_shape_create_hull rejects hulls
+ * beyond them with a clear error. */
+#define TB_HULL_MAX_VERTICES      256
+#define TB_HULL_MAX_FACES         256
+#define TB_HULL_MAX_FACE_VERTICES 32
 
 /* Half extent given to unbounded shapes (planes): large, yet its square stays finite. */
 #define TB_UNBOUNDED_EXTENT     1.0e18
@@ -193,6 +209,9 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_VEC4 impulse[TB_MAX_MANIFOLD_POINTS];  /* accumulated: x normal, y tangent 1, z tangent 2,
                                                  w split (position) impulse; N s */
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
+    TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
+                                 x the axis (its kind and features, narrowphase-defined; 0 none),
+                                 y its separation (float bits), z w unused */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are
@@ -218,8 +237,13 @@ TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */
     TB_VEC4 aabb_half;      /* xyz half extents of the local AABB */
     TB_VEC4 params;         /* sphere: x radius; box: xyz half extents; plane: xyz normal, w offset */
-    TB_UVEC4 info;          /* x TB_GPU_SHAPE_*, y z w reserved */
+    TB_UVEC4 info;          /* x TB_GPU_SHAPE_*; hulls (boxes too): y vertex count, z face
+                               count, w edge count */
     TB_VEC4 material;       /* x friction coefficient, y restitution, z w reserved */
+    TB_UVEC4 hull;          /* hulls (boxes too): x first vertex, y first face plane (indices into
+                               hull_vectors), z first edge, w face base (indices into
+                               hull_topology); the geometry is in the body frame, which for a
+                               hull is its centre-of-mass principal frame */
 };
 
 #endif
