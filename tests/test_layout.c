@@ -57,6 +57,7 @@ static void test_shape_type_values(void** state)
     assert_int_equal(TB_GPU_SHAPE_SPHERE, (unsigned)TB_SHAPE_SPHERE);
     assert_int_equal(TB_GPU_SHAPE_BOX, (unsigned)TB_SHAPE_BOX);
     assert_int_equal(TB_GPU_SHAPE_PLANE, (unsigned)TB_SHAPE_PLANE);
+    assert_int_equal(TB_GPU_SHAPE_HULL, (unsigned)TB_SHAPE_HULL);
 }
 
 /* Two bindings on one index would alias two buffers in the descriptor set. */
@@ -70,7 +71,8 @@ static void test_bindings_distinct(void** state)
                       TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
                       TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST,
-                      TB_BIND_PREV_MANIFOLDS };
+                      TB_BIND_PREV_MANIFOLDS, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
+                      TB_BIND_COLOUR_WORK };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);

@@ -65,7 +65,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       outside), then its faces (first | count << 16: the face's
                                       vertex indices at topology[face base + first ...], counter-
                                       clockwise seen from outside), then those indices */
-#define TB_BIND_COUNT           27
+#define TB_BIND_COLOUR_WORK     27 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
+                                      (each pair cap long) the colouring passes read and
+                                      write in turn (tb_gpu_counters.colouring counts them) */
+#define TB_BIND_COUNT           28
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -139,16 +142,18 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
                                  counts every constraint here, colour_finish subtracts the
                                  coloured ones), z batches (subgroup-wide), w contact points */
+    TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z w unused */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
-#define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (64 + 16 * TB_MAX_COLOURS)
+#define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)
 
 /* Push constants of the world's stages that take them (the solver's colour and iteration). */
 TB_STRUCT(tb_gpu_push) {
-    TB_UVEC4 args;            /* x colour (or round), y iteration, z flags, w unused */
+    TB_UVEC4 args;            /* x colour (or round), y iteration (or sub-round), z flags (or
+                                 sub-rounds), w colouring pass (its parity picks the work list) */
 };
 
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed

@@ -17,6 +17,7 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = TB_BIND_MANIFOLDS,
     [TB_SIM_CONSTRAINTS] = TB_BIND_CONSTRAINTS, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
+    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK,
     [TB_SIM_PREV_MANIFOLDS] = TB_BIND_PREV_MANIFOLDS,
 };
 
@@ -48,6 +49,7 @@ static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
     case TB_SIM_MANIFOLDS:
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
+    case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
     default: return (VkDeviceSize)capacity * 4;
     }
 }
