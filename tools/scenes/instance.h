@@ -28,11 +28,23 @@ float scene_rng_signed(uint32_t* state);
 int scene_vec3_finite(tb_vec3 v);
 int scene_quat_finite(tb_quat q);
 
+/// Deepest overlap among the last step's contact points, m (0 when none overlap).
+tb_result scene_max_penetration(tb_world* world, double* out);
+/// Append a named figure to `out` (dropped beyond SCENE_MAX_CHECKS).
+void scene_put(scene_checks* out, const char* key, double value);
+
 /* piles.c */
 tb_result spheres_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result boxes_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result mixed_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
+
+/* stacks.c */
+tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result pyramid_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result stack_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                      scene_checks* out);
+uint32_t pyramid_base(uint32_t n);
 
 #endif

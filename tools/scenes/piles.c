@@ -131,7 +131,7 @@ static int outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi)
 }
 
 /* Deepest overlap among the last step's contact points, m (0 when none overlap). */
-static tb_result max_penetration(tb_world* w, double* out)
+tb_result scene_max_penetration(tb_world* w, double* out)
 {
     *out = 0.0;
     uint32_t count = 0;
@@ -146,7 +146,7 @@ static tb_result max_penetration(tb_world* w, double* out)
     return r;
 }
 
-static void put(scene_checks* out, const char* key, double value)
+void scene_put(scene_checks* out, const char* key, double value)
 {
     if (out->count < SCENE_MAX_CHECKS) {
         out->items[out->count].key = key;
@@ -174,19 +174,19 @@ tb_result pile_check(tb_world* w, const scene_instance* inst, uint32_t steps, fl
         if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < REST_SPEED) resting++;
     }
     double depth = 0.0;
-    if (r == TB_OK) r = max_penetration(w, &depth);
+    if (r == TB_OK) r = scene_max_penetration(w, &depth);
     tb_world_stats st;
     if (r == TB_OK) r = tb_world_get_stats(w, &st);
     if (r == TB_OK) {
         out->count = 0;
-        put(out, "nan", nan);
-        put(out, "escaped", escaped);
-        put(out, "max_penetration", depth);
-        put(out, "pairs", st.pair_count);
-        put(out, "contacts", st.contact_count);
-        put(out, "batches", st.batch_count);
-        put(out, "colours", st.colour_count);
-        put(out, "resting", n ? (double)resting / n : 1.0);
+        scene_put(out, "nan", nan);
+        scene_put(out, "escaped", escaped);
+        scene_put(out, "max_penetration", depth);
+        scene_put(out, "pairs", st.pair_count);
+        scene_put(out, "contacts", st.contact_count);
+        scene_put(out, "batches", st.batch_count);
+        scene_put(out, "colours", st.colour_count);
+        scene_put(out, "resting", n ? (double)resting / n : 1.0);
     }
     free(pos);
     free(rot);
