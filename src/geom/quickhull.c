@@ -259,6 +259,46 @@ static uint32_t qh_region(qh* q, uint32_t start, uint32_t eye)
     return r;
 }
 
+/* Whether the triangle (a, b, eye) would fold over the face across edge a -> b of region
+ * face r: the eye above that face's plane, and its far corner above the new triangle's. */
+static int qh_folds(const qh* q, const qh_face* r, int k, uint32_t eye)
+{
+    const qh_face* out = &q->f[r->adj[k]];
+    if (qh_dist(q, out, eye) <= 0) return 0;
+    qh_face tri = { .v = { r->v[k], r->v[(k + 1) % 3], eye } };
+    qh_plane(q, &tri);
+    for (int m = 0; m < 3; m++)
+        if (qh_dist(q, &tri, out->v[m]) > q->eps) return 1;
+    return 0;
+}
+
+/* Faces the eye sees within tolerance only (so qh_region left them) but which the new
+ * faces would fold over: they join the region too, as long as it stays a disc. Without
+ * this, thin triangles along a noisy edge can end up facing inwards. */
+static uint32_t qh_unfold(qh* q, uint32_t r, uint32_t eye)
+{
+    for (int grew = 1; grew;) {
+        grew = 0;
+        for (uint32_t i = 0; i < r; i++) {
+            const qh_face* f = &q->f[q->region[i]];
+            for (int k = 0; k < 3; k++) {
+                qh_face* g = &q->f[f->adj[k]];
+                if (g->mark == q->stamp || !qh_folds(q, f, k, eye)) continue;
+                int shared = 0, edge = 0;
+                for (int m = 0; m < 3; m++)
+                    if (q->f[g->adj[m]].mark == q->stamp) { shared++; edge = m; }
+                if (shared == 3 || (shared == 1 && q->vmark[g->v[(edge + 2) % 3]] == q->stamp))
+                    continue;
+                uint32_t tail = 0;
+                qh_join(q, f->adj[k], &r, &tail);
+                grew = 1;
+                break;
+            }
+        }
+    }
+    return r;
+}
+
 /* The region's boundary edges in loop order, into q->hz (as face * 3 + edge). Returns their
  * number, or 0 when they do not form one loop (never expected: qh_region keeps a disc). */
 static uint32_t qh_horizon(qh* q, uint32_t r)
@@ -307,7 +347,7 @@ static void qh_fan(qh* q, uint32_t h, uint32_t eye)
 static int qh_add_point(qh* q, uint32_t start, uint32_t eye)
 {
     q->stamp++;
-    uint32_t r = qh_region(q, start, eye), h = qh_horizon(q, r);
+    uint32_t r = qh_unfold(q, qh_region(q, start, eye), eye), h = qh_horizon(q, r);
     if (h < 3) return -2;
     if (qh_reserve(q, h)) return -1;
     uint32_t base = q->nf;
@@ -434,9 +474,9 @@ static uint32_t qh_loop(qh* q, const uint32_t* tris, uint32_t count, uint32_t c,
     for (uint32_t i = 0; i < m; i++) {
         if (q->corner[3 * v + 2] >= 3) idx[out++] = v;
         v = q->hnext[v];
-        if (q->vmark[v] != q->stamp) return NONE;
+        if (q->vmark[v] != q->stamp || (v == first) != (i == m - 1)) return NONE;
     }
-    return v == first ? out : NONE;
+    return out;
 }
 
 /* Sort the live triangles by polygon into q->region; ends[c] is where polygon c's end. */
@@ -464,26 +504,60 @@ static int qh_compact(qh* q, tb_hull_mesh* mesh)
     mesh->vertices = malloc(nv * sizeof *mesh->vertices);
     if (!mesh->vertices) return -1;
     for (uint32_t i = 0; i < nv; i++) memcpy(mesh->vertices[i], q->p[q->vmark[i]], sizeof(double[3]));
+    memset(q->vmark, 0, q->n * sizeof *q->vmark); /* borrowed above: no stale stamps */
     mesh->vertex_count = nv;
     return 0;
 }
 
-/* Returns 0, -1 out of memory, -2 when a merged face is not a simple polygon. */
-static int qh_polygons(qh* q, tb_hull_mesh* mesh)
+/* Give every triangle of polygon c but the first a polygon of its own (ids from *nc on). */
+static void qh_dissolve(qh* q, const uint32_t* ends, uint32_t c, uint32_t* nc)
 {
-    uint32_t nc = qh_clusters(q);
+    for (uint32_t i = (c ? ends[c - 1] : 0) + 1; i < ends[c]; i++)
+        q->f[q->region[i]].cluster = (*nc)++;
+}
+
+/* A polygon whose boundary is not one loop (noise about as large as eps can make a merged
+ * region ring-shaped or pinched) is split back into its triangles, or, when it is a single
+ * triangle, its merged neighbours are. The hull stays valid, only less merged there.
+ * Returns 0 when it split something, -4 when nothing was left to split. */
+static int qh_split(qh* q, const uint32_t* ends, uint32_t c, uint32_t* nc)
+{
+    uint32_t begin = c ? ends[c - 1] : 0, before = *nc;
+    if (ends[c] - begin > 1) {
+        qh_dissolve(q, ends, c, nc);
+        return 0;
+    }
+    const qh_face* f = &q->f[q->region[begin]];
+    for (int k = 0; k < 3; k++) {
+        uint32_t g = q->f[f->adj[k]].cluster;
+        if (g < before) qh_dissolve(q, ends, g, nc);
+    }
+    return *nc > before ? 0 : -4;
+}
+
+/* The polygons' corner loops into the mesh; when one is not a simple loop, split it and
+ * try again (every split adds polygons, so this ends). Without merge, every triangle is a
+ * face of its own. Returns 0, -1 out of memory, -4 when a polygon cannot be made simple. */
+static int qh_polygons(qh* q, tb_hull_mesh* mesh, int merge)
+{
+    uint32_t nc = 0, total = 0;
+    if (merge) nc = qh_clusters(q);
+    else
+        for (uint32_t i = 0; i < q->nf; i++) q->f[i].cluster = q->f[i].alive ? nc++ : NONE;
     if (nc == NONE) return -1;
-    qh_count_corners(q);
-    uint32_t* ends = malloc((nc + 1) * sizeof *ends);
-    mesh->faces = malloc(nc * sizeof *mesh->faces);
+    uint32_t* ends = malloc((q->nf + 1) * sizeof *ends);
+    mesh->faces = malloc(q->nf * sizeof *mesh->faces);
     mesh->indices = malloc(3 * (size_t)q->nf * sizeof *mesh->indices);
     if (!ends || !mesh->faces || !mesh->indices) { free(ends); return -1; }
-    qh_group(q, ends, nc);
-    uint32_t total = 0;
     for (uint32_t c = 0; c < nc; c++) {
+        if (c == 0) { qh_count_corners(q); qh_group(q, ends, nc); total = 0; }
         uint32_t begin = c ? ends[c - 1] : 0;
         uint32_t k = qh_loop(q, q->region + begin, ends[c] - begin, c, mesh->indices + total);
-        if (k == NONE || k < 3) { free(ends); return -2; }
+        if (k == NONE || k < 3) {
+            if (qh_split(q, ends, c, &nc)) { free(ends); return -4; }
+            c = (uint32_t)-1; /* start over with the new polygons */
+            continue;
+        }
         mesh->faces[c] = (tb_hull_face){ total, k };
         total += k;
     }
@@ -491,6 +565,49 @@ static int qh_polygons(qh* q, tb_hull_mesh* mesh)
     mesh->face_count = nc;
     mesh->index_count = total;
     return qh_compact(q, mesh);
+}
+
+/* Whether the merged mesh is convex within 2 eps: every vertex on or below every face's
+ * plane (Newell normal through the mean of the face's corners), on its own faces' planes,
+ * and no face turning the wrong way at a corner. Merging can fail this where the points are noisy at about the scale of eps
+ * (regions that are flat within eps yet not convex); the unmerged triangles never do. */
+static int qh_valid(const tb_hull_mesh* m, double eps)
+{
+    for (uint32_t f = 0; f < m->face_count; f++) {
+        const uint32_t* loop = m->indices + m->faces[f].first;
+        uint32_t count = m->faces[f].count;
+        double c[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
+        for (uint32_t i = 0; i < count; i++)
+            for (int k = 0; k < 3; k++) c[k] += m->vertices[loop[i]][k] / count;
+        for (uint32_t i = 0; i < count; i++) {
+            double a[3], b[3], x[3];
+            v3_sub(m->vertices[loop[i]], c, a);
+            v3_sub(m->vertices[loop[(i + 1) % count]], c, b);
+            v3_cross(a, b, x);
+            for (int k = 0; k < 3; k++) n[k] += x[k];
+        }
+        double len = sqrt(v3_dot(n, n));
+        if (!(len > 0)) return 0;
+        for (int k = 0; k < 3; k++) n[k] /= len;
+        for (uint32_t v = 0; v < m->vertex_count; v++) {
+            double d[3];
+            v3_sub(m->vertices[v], c, d);
+            if (v3_dot(n, d) > 2 * eps) return 0;
+        }
+        for (uint32_t i = 0; i < count; i++) {
+            const double* a = m->vertices[loop[i]];
+            const double* b = m->vertices[loop[(i + 1) % count]];
+            const double* e = m->vertices[loop[(i + 2) % count]];
+            double d[3], ab[3], be[3], x[3];
+            v3_sub(a, c, d);
+            v3_sub(b, a, ab);
+            v3_sub(e, b, be);
+            v3_cross(ab, be, x);
+            if (v3_dot(n, d) < -2 * eps || v3_dot(n, x) < -2 * eps * sqrt(v3_dot(ab, ab)))
+                return 0;
+        }
+    }
+    return 1;
 }
 
 /* ---- entry ---------------------------------------------------------------------------- */
@@ -536,12 +653,18 @@ int tb_quickhull(const double (*points)[3], uint32_t n, double eps, tb_hull_mesh
     if (!rc && qh_simplex(&q, t, error, error_size)) rc = -3;
     if (!rc) rc = qh_start(&q, t);
     if (!rc) rc = qh_grow(&q);
-    if (!rc) rc = qh_polygons(&q, mesh);
+    if (!rc) rc = qh_polygons(&q, mesh, 1);
+    if (rc == -4 || (rc == 0 && !qh_valid(mesh, eps))) {
+        tb_hull_mesh_free(mesh);
+        rc = qh_polygons(&q, mesh, 0);
+        if (rc == 0 && !qh_valid(mesh, eps)) rc = -2;
+    }
     qh_free(&q);
     if (rc) tb_hull_mesh_free(mesh);
     if (rc == -1) snprintf(error, error_size, "out of memory while building a convex hull");
-    if (rc == -2)
+    if (rc == -2 || rc == -4)
         snprintf(error, error_size, "could not build a consistent convex hull from these points "
-                 "(numerically degenerate input)");
+                 "(%s)", rc == -2 ? "the points are too noisy at the scale of the tolerance"
+                                  : "coplanar faces do not merge into a simple polygon");
     return rc ? -1 : 0;
 }
