@@ -25,6 +25,8 @@ static void test_params_layout(void** state)
     assert_int_equal(sizeof(tb_gpu_params), 96);
     assert_int_equal(offsetof(tb_gpu_params, capacity), 64);
     assert_int_equal(offsetof(tb_gpu_params, contact), 80);
+    assert_int_equal(offsetof(tb_gpu_params, soft), 96);
+    assert_int_equal(offsetof(tb_gpu_params, soft_static), 112);
     assert_int_equal(offsetof(tb_gpu_params, gravity), 0);
     assert_int_equal(offsetof(tb_gpu_params, counts), 16);
     assert_int_equal(offsetof(tb_gpu_params, limits), 32);

@@ -122,13 +122,17 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 /* Parameters of the step, written by the host before a submission (never mid-step). */
 TB_STRUCT(tb_gpu_params) {
     TB_VEC4 gravity;        /* xyz gravity (m/s^2), w time step dt (s) */
-    TB_UVEC4 counts;        /* x body slots in use (high-water mark), y shape count, z w reserved */
+    TB_UVEC4 counts;        /* x body slots in use (high-water mark), y shape count, z solver
+                               substeps, w reserved */
     TB_VEC4 limits;         /* x largest rotation per step (rad), y z w reserved */
     TB_UVEC4 body_dispatch; /* xyz: VkDispatchIndirectCommand covering counts.x bodies; w reserved */
     TB_UVEC4 capacity;      /* x pair capacity (one half), y grid table mask (size - 1),
                                z colouring rounds recorded, w solver iterations */
     TB_VEC4 contact;        /* x contact margin (m), y restitution threshold (m/s),
-                               z penetration slop (m), w split-impulse recovery rate (1/step) */
+                               z fastest push-out speed (m/s), w reserved */
+    TB_VEC4 soft;           /* soft contact of one substep: x bias rate (1/s), y mass scale,
+                               z impulse scale, w substep h (s) */
+    TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
@@ -157,12 +161,18 @@ TB_STRUCT(tb_gpu_counters) {
  * Bodies that are not dynamic have zero inverse mass and inertia and are never written. */
 TB_STRUCT(tb_gpu_solver_body) {
     TB_VEC4 linear;           /* xyz velocity (m/s), w inverse mass (1/kg) */
-    TB_VEC4 angular;          /* xyz angular velocity (rad/s), w unused */
-    TB_VEC4 push_linear;      /* xyz split-impulse pseudo velocity (m/s), w unused */
-    TB_VEC4 push_angular;     /* xyz split-impulse pseudo angular velocity (rad/s), w unused */
+    TB_VEC4 angular;          /* xyz angular velocity (rad/s), w gravity scale */
+    TB_VEC4 delta_position;   /* xyz how far the substeps have moved the centre (m), w unused */
+    TB_VEC4 delta_rotation;   /* the rotation the substeps have turned it by (quaternion) */
     TB_VEC4 inv_inertia_diag; /* world inverse inertia tensor: xx, yy, zz; w unused */
     TB_VEC4 inv_inertia_off;  /* xy, xz, yz; w unused */
 };
+
+/* Solver sweeps (tb_gpu_push.args.z of solver/solve): what a sweep over the colours does. */
+#define TB_SOLVE_BIAS           TB_U(0) /* solve with the soft push-out of penetration */
+#define TB_SOLVE_WARM           TB_U(1) /* apply the accumulated impulses (warm start) */
+#define TB_SOLVE_RELAX          TB_U(2) /* solve without push-out: remove its velocity */
+#define TB_SOLVE_RESTITUTION    TB_U(3) /* after the substeps: bounce */
 
 /* Push constants of the world's stages that take them (the solver's colour and iteration). */
 TB_STRUCT(tb_gpu_push) {
@@ -225,8 +235,9 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 info;            /* x point count, y body a, z body b, w restitution (float bits) */
     TB_VEC4 point[TB_MAX_MANIFOLD_POINTS];    /* xyz world point midway between the surfaces,
                                                  w separation (m, negative when penetrating) */
-    TB_VEC4 impulse[TB_MAX_MANIFOLD_POINTS];  /* accumulated: x normal, y tangent 1, z tangent 2,
-                                                 w split (position) impulse; N s */
+    TB_VEC4 impulse[TB_MAX_MANIFOLD_POINTS];  /* accumulated over a substep: x normal, y tangent
+                                                 1, z tangent 2; w the normal impulse of the
+                                                 whole step (the sum over its substeps); N s */
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
@@ -234,14 +245,15 @@ TB_STRUCT(tb_gpu_manifold) {
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are
- * effective masses 1 / (J M^-1 J^T) along the normal and the two tangents; the velocity
- * targets are relative normal velocities (b minus a along the normal) the solve drives
- * towards: the real one (restitution, speculative approach), the split (pseudo) one
- * (penetration recovery). */
+ * effective masses 1 / (J M^-1 J^T) along the normal and the two tangents. The lever arms are
+ * the step's: substeps move the bodies, and the solve tracks the separation as the adjusted
+ * separation plus how far the arms' ends have moved apart along the normal. */
 TB_STRUCT(tb_gpu_constraint_point) {
     TB_VEC4 ra;               /* xyz point relative to a's centre, w normal effective mass */
-    TB_VEC4 rb;               /* xyz point relative to b's centre, w normal velocity target */
-    TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z split velocity target, w unused */
+    TB_VEC4 rb;               /* xyz point relative to b's centre, w adjusted separation: the
+                                 separation minus dot(rb - ra, normal) (m) */
+    TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z relative normal velocity
+                                 before the step (m/s, for restitution), w unused */
 };
 
 /* Indexed like the pairs of this step's half (constraints[p] for pairs[half base + p]). */

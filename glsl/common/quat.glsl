@@ -8,6 +8,13 @@ vec4 quat_mul(vec4 a, vec4 b)
 }
 
 // Rotation matrix; its columns are the body's axes in world space.
+// v turned by the unit quaternion q.
+vec3 quat_rotate(vec4 q, vec3 v)
+{
+    vec3 t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
 mat3 quat_to_mat3(vec4 q)
 {
     vec3 q2 = q.xyz * 2.0;

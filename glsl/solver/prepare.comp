@@ -1,29 +1,16 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Solver data of every constraint of the step (pairs with points), from its manifold and
-// the velocities after gravity: friction basis, lever arms, effective masses and the normal
-// velocity targets. Per pair, dispatched with counters.pair_dispatch; writes constraints[p].
-//
-// Real velocity target of a point (relative normal velocity vn = (vb - va) . n after the solve):
-// - touching or penetrating (s <= 0): vn >= 0, no positional bias (recovery is split, below);
-// - speculative (s > 0): the gap may close within the step, vn >= -s / dt;
-// - restitution: when e > 0, the approach speed before the solve exceeds params.contact.y and
-//   the point reaches the surface within the step, vn >= -e * vn_before (a speculative point
-//   thus bounces up to s early, at most the contact margin; with e = 0 it lands exactly).
-// Split target: params.contact.w * max(-(s + slop), 0) / dt, slop = params.contact.z.
+// the velocities before the step's forces. Per pair, dispatched with counters.pair_dispatch;
+// writes constraints[p]: friction basis, lever arms, effective masses, the adjusted
+// separation the substeps track (see contact.glsl) and the relative normal velocity before
+// the step, which restitution answers.
 #include "colouring.glsl"
 #include "bodies.glsl"
 
 vec3 point_velocity(solver_body b, vec3 r)
 {
     return b.v + cross(b.w, r);
-}
-
-float velocity_target(float s, float vn, float restitution, float dt)
-{
-    float target = s > 0.0 ? -s / dt : 0.0;
-    bool bounces = restitution > 0.0 && -vn > params.contact.y && -vn * dt >= s;
-    return bounces ? max(target, -restitution * vn) : target;
 }
 
 void main()
@@ -41,7 +28,6 @@ void main()
     vec3 n = m.normal.xyz, t1, t2;
     tangent_basis(n, t1, t2);
     float restitution = uintBitsToFloat(m.info.w);
-    float dt = params.gravity.w;
     tb_gpu_constraint c;
     c.tangent1 = vec4(t1, m.normal.w);
     c.tangent2 = vec4(t2, restitution);
@@ -56,11 +42,10 @@ void main()
         float s = m.point[k].w;
         vec3 ra = point - pa, rb = point - pb;
         float vn = dot(point_velocity(b, rb) - point_velocity(a, ra), n);
-        float split = params.contact.w * max(-(s + params.contact.z), 0.0) / dt;
         c.p[k].ra = vec4(ra, solver_effective_mass(a, b, ra, rb, n));
-        c.p[k].rb = vec4(rb, velocity_target(s, vn, restitution, dt));
+        c.p[k].rb = vec4(rb, s - dot(rb - ra, n));
         c.p[k].mass = vec4(solver_effective_mass(a, b, ra, rb, t1),
-                           solver_effective_mass(a, b, ra, rb, t2), split, 0.0);
+                           solver_effective_mass(a, b, ra, rb, t2), vn, 0.0);
     }
     constraints[p] = c;
 }

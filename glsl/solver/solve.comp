@@ -1,28 +1,31 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Batched projected Gauss-Seidel over the contacts of one colour: push.args.x = colour c,
-// push.args.y = iteration. Thread i < counters.colour[c].x solves the constraint of pair
-// colour_list[colour[c].y + i]; constraints of one colour touch disjoint dynamic bodies, so
-// they run in parallel without atomics and the result does not depend on their order.
-// Dispatched with counters.colour_dispatch[c], workgroups of TB_SOLVER_WORKGROUP_SIZE.
+// push.args.y = substep, push.args.z = what the sweep does (TB_SOLVE_*). Thread i <
+// counters.colour[c].x works on the constraint of pair colour_list[colour[c].y + i];
+// constraints of one colour touch disjoint dynamic bodies, so they run in parallel without
+// atomics and the result does not depend on their order. Dispatched with
+// counters.colour_dispatch[c], workgroups of TB_SOLVER_WORKGROUP_SIZE.
 //
 // Materials, combined by the narrowphase into the manifold: friction sqrt(fa * fb) (a
 // slippery surface makes the contact slippery, two rough ones stay rough), restitution
 // max(ea, eb) (a bouncy ball bounces on any floor).
 //
-// Per point and iteration: the normal impulse, accumulated and clamped >= 0, drives the
-// relative normal velocity to its target (0 at rest, -e * vn for a bounce, -s / dt for a
-// speculative point s apart); then the two friction impulses, accumulated and clamped
-// together to a circular cone of radius mu * normal impulse (no preferred direction, unlike
-// a box per tangent). A sweep with push.args.z = 1 before the first iteration applies the
-// previous step's impulses (warm start) to every constraint.
-//
-// Penetration is recovered by split impulses: a second accumulated normal impulse
-// (impulse.w) drives pseudo velocities (solver_bodies push) towards a recovery rate; integrate moves
-// the pose with v + push but keeps v. A positional bias in the real velocity would turn
-// penetration into kinetic energy, so deep contacts would pop apart and stacks would jitter;
-// split impulses move the bodies apart without making them faster.
+// The step is a soft step (Box2D v3): each substep applies gravity, warm-starts every
+// constraint, solves with penetration pushed out by a stiff damped spring, moves the bodies
+// (solver/substep), then relaxes: solves again without the push so its velocity does not
+// survive into the motion. Restitution follows the last substep. Penetration is thus
+// corrected through positions tracked within the step, never by a bias left in the final
+// velocities, so stacks rest without jitter and deep contacts do not pop apart.
 #include "contact.glsl"
+
+void work(uint p)
+{
+    uint mode = push.args.z;
+    if (mode == TB_SOLVE_WARM) warm_start_contact(p, push.args.y);
+    else if (mode == TB_SOLVE_RESTITUTION) restitution_contact(p);
+    else solve_contact(p, mode == TB_SOLVE_RELAX);
+}
 
 void main()
 {
@@ -30,7 +33,5 @@ void main()
     uint colour = push.args.x;
     uint i = pair_thread_index();
     if (colour >= TB_MAX_COLOURS || i >= counters.colour[colour].x) return;
-    uint p = colour_list[counters.colour[colour].y + i];
-    if (push.args.z != 0u) warm_start_contact(p);
-    else solve_contact(p);
+    work(colour_list[counters.colour[colour].y + i]);
 }

@@ -11,11 +11,13 @@ tb_world_def tb_default_world_def(void)
     def.max_bodies = 0;                          /* 0: 2^24 */
     def.max_shapes = 0;                          /* 0: 2^20 */
     def.max_rotation_per_step = 0.25f * 3.14159265358979f;
-    def.solver_iterations = 10;
+    def.substeps = 6;
+    def.solver_iterations = 1;
     def.contact_margin = 0.02f;
     def.restitution_threshold = 0.5f;
-    def.penetration_slop = 0.005f;
-    def.penetration_recovery = 0.2f;
+    def.contact_hertz = 0.0f;                    /* 0: a quarter of the substep rate */
+    def.contact_damping_ratio = 10.0f;
+    def.contact_push_speed = 3.0f;
     def.internal_cookie = TB_DEF_COOKIE;
     return def;
 }

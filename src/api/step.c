@@ -134,7 +134,8 @@ static void solve_stage(builder* b)
 {
     tb_world* w = b->w;
     if (!b->r) b->r = tb_solver_record_solve(&w->solver, &b->list, w->sim.counters.buffer,
-                                             w->colour_rounds, w->solver_iterations);
+                                             w->colour_rounds, w->substeps,
+                                             w->solver_iterations);
     end_stage(b, "solver/solve");
 }
 

@@ -32,14 +32,20 @@ static tb_result check_world_def(tb_diag* diag, const tb_world_def* def)
     if (!isfinite(def->max_rotation_per_step) || def->max_rotation_per_step <= 0)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "max_rotation_per_step must be finite "
                        "and > 0, not %g", (double)def->max_rotation_per_step);
+    if (def->substeps < 1 || def->substeps > 64)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "substeps must be in [1, 64], not %u",
+                       def->substeps);
+    if (!isfinite(def->contact_hertz) || def->contact_hertz < 0)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "contact_hertz must be finite and >= 0, "
+                       "not %g", (double)def->contact_hertz);
     if (def->solver_iterations < 1 || def->solver_iterations > 1000)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "solver_iterations must be in [1, 1000], "
                        "not %u", def->solver_iterations);
     const struct { float v; const char* name; float hi; } ranges[] = {
         { def->contact_margin, "contact_margin", 1e30f },
         { def->restitution_threshold, "restitution_threshold", 1e30f },
-        { def->penetration_slop, "penetration_slop", 1e30f },
-        { def->penetration_recovery, "penetration_recovery", 1.0f },
+        { def->contact_damping_ratio, "contact_damping_ratio", 1e30f },
+        { def->contact_push_speed, "contact_push_speed", 1e30f },
     };
     for (size_t i = 0; i < sizeof ranges / sizeof ranges[0]; i++)
         if (!isfinite(ranges[i].v) || ranges[i].v < 0 || ranges[i].v > ranges[i].hi)
@@ -115,11 +121,13 @@ tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* ex
     w->serial = next_world_serial();
     w->gravity = def->gravity;
     w->max_rotation_per_step = def->max_rotation_per_step;
+    w->substeps = def->substeps;
     w->solver_iterations = def->solver_iterations;
     w->contact_margin = def->contact_margin;
     w->restitution_threshold = def->restitution_threshold;
-    w->penetration_slop = def->penetration_slop;
-    w->penetration_recovery = def->penetration_recovery;
+    w->contact_hertz = def->contact_hertz;
+    w->contact_damping_ratio = def->contact_damping_ratio;
+    w->contact_push_speed = def->contact_push_speed;
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
@@ -198,6 +206,21 @@ tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
     return r;
 }
 
+/* The soft contact of a substep h (Box2D v3's soft step): a damped spring of contact_hertz,
+ * capped at a quarter of the substep rate so it stays stable (at half the rate a 10-box
+ * column already rocks itself over); 0 takes the cap (twice as stiff against static
+ * bodies, which cannot give way), written as the bias rate, mass
+ * scale and impulse scale the solve uses (see glsl/solver/contact.glsl). */
+static tb_gpu_vec4 contact_softness(const tb_world* w, float h, double scale)
+{
+    if (!(h > 0)) return (tb_gpu_vec4){ 0, 1, 0, 0 };
+    double cap = 0.25 / h;
+    double hertz = scale * (w->contact_hertz > 0 && w->contact_hertz < cap ? w->contact_hertz : cap);
+    double omega = 2.0 * 3.14159265358979323846 * hertz, zeta = w->contact_damping_ratio;
+    double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+    return (tb_gpu_vec4){ (float)(omega / a1), (float)(a2 * a3), (float)a3, h };
+}
+
 /* Per-body dispatches cover the slots in use; rows of groups keep x within the device limit. */
 static void write_params(tb_world* w, float dt)
 {
@@ -207,13 +230,15 @@ static void write_params(tb_world* w, float dt)
     uint32_t x = groups < max_x ? groups : max_x;
     tb_gpu_params* p = &w->params;
     p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
-    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, 0, 0 };
+    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, w->substeps, 0 };
     p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
                                   w->solver_iterations };
-    p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold, w->penetration_slop,
-                                w->penetration_recovery };
+    p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold,
+                                w->contact_push_speed, 0 };
+    p->soft = contact_softness(w, dt / (float)w->substeps, 1.0);
+    p->soft_static = contact_softness(w, dt / (float)w->substeps, 2.0);
 }
 
 tb_result tb_world_prepare_shapes(tb_world* w)

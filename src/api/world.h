@@ -81,8 +81,9 @@ struct tb_world {
     VkPipeline kernels[TB_KERNEL_COUNT];
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
-    uint32_t solver_iterations;
-    float contact_margin, restitution_threshold, penetration_slop, penetration_recovery;
+    uint32_t substeps, solver_iterations;
+    float contact_margin, restitution_threshold;
+    float contact_hertz, contact_damping_ratio, contact_push_speed;
     uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
     uint64_t steps_redone;       ///< steps run again after a buffer grew
     tb_buffer params_buffer;

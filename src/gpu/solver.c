@@ -15,6 +15,7 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
     { "solver/prepare", TB_WORKGROUP_SIZE, offsetof(tb_solver, prepare) },
     { "solver/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_solver, solve) },
     { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
+    { "integrate/substep", TB_WORKGROUP_SIZE, offsetof(tb_solver, substep) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
@@ -98,23 +99,31 @@ tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkB
     return r ? r : add(s, list, &finish);
 }
 
-/* One sweep over the colours: a warm start (push z = 1) or a solve iteration. */
-static tb_result record_iteration(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
-                                  uint32_t rounds, uint32_t iteration, uint32_t warm)
+/* One sweep over the colours (TB_SOLVE_* in push z, the substep in y), and the tail. */
+static tb_result record_sweep(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                              uint32_t rounds, uint32_t substep, uint32_t mode)
 {
     tb_result r = TB_OK;
     for (uint32_t colour = 0; colour < rounds && !r; colour++) {
         tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
                                           TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour,
-                                          colour, iteration, warm);
+                                          colour, substep, mode);
         r = add(s, list, &solve);
     }
     if (!r && rounds == TB_MAX_COLOURS) {
         tb_pass tail = tb_pass_with_args(s->solve_tail, TB_DISPATCH_FIXED, counters, 0, 0,
-                                         iteration, warm);
+                                         substep, mode);
         r = add(s, list, &tail);
     }
     return r;
+}
+
+/* A per-body pass of integrate/substep: 0 gravity, 1 motion. */
+static tb_result record_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what)
+{
+    tb_pass pass = tb_pass_with_args(s->substep, TB_DISPATCH_PER_BODY, VK_NULL_HANDLE, 0, 0, 0,
+                                     what);
+    return add(s, list, &pass);
 }
 
 tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuffer counters)
@@ -124,11 +133,17 @@ tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuf
 }
 
 tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
-                                 uint32_t rounds, uint32_t iterations)
+                                 uint32_t rounds, uint32_t substeps, uint32_t iterations)
 {
     tb_result r = check_rounds(s, rounds);
-    if (!r) r = record_iteration(s, list, counters, rounds, 0, 1);
-    for (uint32_t it = 0; it < iterations && !r; it++)
-        r = record_iteration(s, list, counters, rounds, it, 0);
+    for (uint32_t sub = 0; sub < substeps && !r; sub++) {
+        r = record_bodies(s, list, 0);
+        if (!r) r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_WARM);
+        for (uint32_t it = 0; it < iterations && !r; it++)
+            r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_BIAS);
+        if (!r) r = record_bodies(s, list, 1);
+        if (!r) r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_RELAX);
+    }
+    if (!r) r = record_sweep(s, list, counters, rounds, substeps, TB_SOLVE_RESTITUTION);
     return r;
 }

@@ -17,7 +17,7 @@
 
 typedef struct tb_solver {
     tb_pipelines* pipelines;
-    VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail;
+    VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail, substep;
 } tb_solver;
 
 /// Build the solver's pipelines.
@@ -39,10 +39,12 @@ tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkB
 /// approach speed the body had when the step began (the speed it hit with).
 tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuffer counters);
 
-/// `iterations` (params.capacity.w) times: the solve of colours 0..rounds-1,
-/// and solve_tail when rounds == TB_MAX_COLOURS (the only case that may leave constraints
-/// uncoloured without abandoning the step).
+/// The soft step, `substeps` times: gravity (integrate/substep), a warm-start sweep,
+/// `iterations` solve sweeps, the motion (integrate/substep), a relax sweep; then one
+/// restitution sweep. A sweep is the solve of colours 0..rounds-1, and solve_tail when
+/// rounds == TB_MAX_COLOURS (the only case that may leave constraints uncoloured without
+/// abandoning the step).
 tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
-                                 uint32_t rounds, uint32_t iterations);
+                                 uint32_t rounds, uint32_t substeps, uint32_t iterations);
 
 #endif
