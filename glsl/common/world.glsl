@@ -33,6 +33,9 @@ layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_m
 layout(set = 0, binding = TB_BIND_PREV_MANIFOLDS, std430) buffer PrevManifolds { tb_gpu_manifold prev_manifolds[]; };
 layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
 layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
+// Convex hull geometry of the live shapes (boxes too), located by tb_gpu_shape.hull.
+layout(set = 0, binding = TB_BIND_HULL_VECTORS, std430) readonly buffer HullVectors { vec4 hull_vectors[]; };
+layout(set = 0, binding = TB_BIND_HULL_TOPOLOGY, std430) readonly buffer HullTopology { uint hull_topology[]; };
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()
