@@ -61,6 +61,29 @@ vec4 np_clip_crossing(vec4 p, vec4 q, float dp, float dq, uint side, bool leavin
                           leaving ? (NP_CLIP_SIDE | side) : line);
 }
 
+// Side s of reference face `ref` (reference vertex s to s + 1): xyz its outward unit normal,
+// w its offset; a zero vector for a degenerate edge.
+vec4 np_clip_side(np_hull h, uvec2 ref, uint s, vec3 normal)
+{
+    vec3 r0 = np_hull_face_vertex(h, ref, s);
+    vec3 r1 = np_hull_face_vertex(h, ref, s + 1u == ref.y ? 0u : s + 1u);
+    vec3 side = cross(r1 - r0, normal);  // outward: the face lies left of r0 -> r1
+    if (dot(side, side) == 0.0) return vec4(0.0);
+    side = normalize(side);
+    return vec4(side, dot(side, r0));
+}
+
+// A corner clipped with the tolerance may lie that little outside the reference face:
+// moved onto it (within the reference plane), it lies on both surfaces.
+vec3 np_clip_onto_face(np_hull h, uvec2 ref, vec3 normal, vec3 x)
+{
+    for (uint s = 0u; s < ref.y; s++) {
+        vec4 side = np_clip_side(h, ref, s, normal);
+        x -= side.xyz * max(dot(side.xyz, x) - side.w, 0.0);
+    }
+    return x;
+}
+
 // The face of h most anti-parallel to n (h's frame); the first of equals.
 uint np_incident_face(np_hull h, vec3 n)
 {
@@ -93,24 +116,20 @@ uint np_hull_face_contact(np_target t, np_body r, np_hull hr, uint rf, np_hull h
                                  np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
 
     uvec2 ref = np_hull_face(hr, rf);
-    vec3 r0 = np_hull_face_vertex(hr, ref, 0u);
     // Corners within rounding of a side count as inside, so where corners of equal faces
     // meet the incident vertex wins every time, not a crossing a rounding away from it.
-    float tol = 1.0e-5 * (length(r0) + length(i_in_r.pos)) + 1.0e-6;
+    float tol = 1.0e-5 * (length(np_hull_face_vertex(hr, ref, 0u)) + length(i_in_r.pos)) +
+                1.0e-6 * (length(r.pos) + 1.0);
     uint from = 0u, to = NP_CLIP_MAX;
     for (uint s = 0u; s < ref.y && n > 0u; s++) {
-        vec3 r1 = np_hull_face_vertex(hr, ref, s + 1u == ref.y ? 0u : s + 1u);
-        vec3 side = cross(r1 - r0, plane.xyz);  // outward: the face lies left of r0 -> r1
-        r0 = r1;
-        if (dot(side, side) == 0.0) continue;
-        side = normalize(side);
-        float offset = dot(side, r1) + tol;
+        vec4 side = np_clip_side(hr, ref, s, plane.xyz);
+        if (side.xyz == vec3(0.0)) continue;
         uint m = 0u;
         vec4 p = poly[from + n - 1u];
-        float dp = dot(side, p.xyz) - offset;
+        float dp = dot(side.xyz, p.xyz) - side.w - tol;
         for (uint k = 0u; k < n; k++) {
             vec4 q = poly[from + k];
-            float dq = dot(side, q.xyz) - offset;
+            float dq = dot(side.xyz, q.xyz) - side.w - tol;
             if ((dp > 0.0) != (dq > 0.0) && m < NP_CLIP_MAX)
                 poly[to + m++] = np_clip_crossing(p, q, dp, dq, s, dq > 0.0);
             if (dq <= 0.0 && m < NP_CLIP_MAX) poly[to + m++] = q;
@@ -150,7 +169,8 @@ uint np_hull_face_contact(np_target t, np_body r, np_hull hr, uint rf, np_hull h
         vec4 c = poly[from + k];
         float h = dot(plane.xyz, c.xyz) - plane.w;
         if (h >= margin || (near > 4u && !any(equal(kept, uvec4(k))))) continue;
-        vec3 point = r.pos + r.rot * (c.xyz - plane.xyz * (0.5 * h));
+        vec3 x = np_clip_onto_face(hr, ref, plane.xyz, c.xyz);
+        vec3 point = r.pos + r.rot * (x - plane.xyz * (0.5 * h));
         np_emit(t, count, point, h, key | (uint(c.w) & 0xfffu));
         count++;
     }
