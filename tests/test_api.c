@@ -287,6 +287,80 @@ static void test_bad_shapes(void** state)
     assert_int_equal(t, TB_SHAPE_PLANE);
 }
 
+/* Hull input the builder must refuse: too few points, non-finite, flat, a line, one point. */
+static void test_bad_hulls(void** state)
+{
+    fixture* fx = *state;
+    tb_world* w = fx->w;
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id out = tb_null_shape;
+    tb_vec3 pts[16];
+    for (int i = 0; i < 8; i++) pts[i] = th_v3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1);
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 3, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, NULL, 8, &out), TB_ERROR_INVALID_ARGUMENT);
+    pts[5].y = NAN;
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 8, &out), TB_ERROR_INVALID_ARGUMENT);
+    pts[5].y = INFINITY;
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 8, &out), TB_ERROR_INVALID_ARGUMENT);
+    for (int i = 0; i < 16; i++) pts[i] = th_v3((float)(i % 4), 0.5f, (float)(i / 4)); /* flat */
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 16, &out), TB_ERROR_INVALID_ARGUMENT);
+    for (int i = 0; i < 16; i++) pts[i] = th_v3((float)i, 2.0f * i, 0); /* a line */
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 16, &out), TB_ERROR_INVALID_ARGUMENT);
+    for (int i = 0; i < 16; i++) pts[i] = th_v3(1, 2, 3);
+    EXPECT_REJECT(fx, tb_shape_create_hull(w, &sd, pts, 16, &out), TB_ERROR_INVALID_ARGUMENT);
+    tb_hull_info info;
+    EXPECT_REJECT(fx, tb_shape_get_hull_info(w, fx->box, &info), TB_ERROR_INVALID_ARGUMENT);
+}
+
+/* A cube given off-centre with points inside and on its faces: the hull is the cube, its
+ * body frame sits at the cube's centre, and it can be used, stepped and destroyed. */
+static void test_hull_shape(void** state)
+{
+    fixture* fx = *state;
+    tb_world* w = fx->w;
+    tb_vec3 pts[8 + 9];
+    for (int i = 0; i < 8; i++)
+        pts[i] = th_v3(i & 1 ? 3 : 1, i & 2 ? 2 : 0, i & 4 ? 1 : -1);   /* centre (2, 1, 0) */
+    for (int i = 0; i < 9; i++) pts[8 + i] = th_v3(1.5f + 0.5f * (i % 3), 2.0f, -0.5f + 0.5f * (i / 3));
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id hull;
+    th_assert_ok(tb_shape_create_hull(w, &sd, pts, 17, &hull));
+    tb_shape_type type;
+    th_assert_ok(tb_shape_get_type(w, hull, &type));
+    assert_int_equal(type, TB_SHAPE_HULL);
+    tb_hull_info info;
+    th_assert_ok(tb_shape_get_hull_info(w, hull, &info));
+    assert_int_equal(info.vertex_count, 8);
+    assert_int_equal(info.face_count, 6);
+    assert_int_equal(info.edge_count, 12);
+    assert_float_equal(info.volume, 8.0f, 1e-4f);
+    assert_float_equal(info.center_of_mass.x, 2.0f, 1e-5f);
+    assert_float_equal(info.center_of_mass.y, 1.0f, 1e-5f);
+    assert_float_equal(info.center_of_mass.z, 0.0f, 1e-5f);
+    assert_float_equal(info.unit_inertia.x, 2.0f / 3.0f, 1e-4f);
+    tb_vec3 verts[8];
+    uint32_t count = 0;
+    th_assert_ok(tb_shape_get_hull_vertices(w, hull, verts, 8, &count));
+    assert_int_equal(count, 8);
+    for (int i = 0; i < 8; i++) {   /* every corner is 1 from the centre on every axis */
+        assert_float_equal(fabsf(verts[i].x), 1.0f, 1e-5f);
+        assert_float_equal(fabsf(verts[i].y), 1.0f, 1e-5f);
+        assert_float_equal(fabsf(verts[i].z), 1.0f, 1e-5f);
+    }
+    tb_body_def d = th_dynamic_def(hull, th_v3(0, 10, 5));
+    tb_body_id body = th_body(w, &d);
+    float mass;
+    tb_vec3 inertia;
+    th_assert_ok(tb_body_get_mass(w, body, &mass, &inertia));
+    assert_float_equal(mass, 8000.0f, 0.1f);
+    th_assert_ok(tb_world_step(w, DT));
+    th_assert_result(tb_shape_destroy(w, hull), TB_ERROR_IN_USE);
+    th_assert_ok(tb_body_destroy(w, body));
+    th_assert_ok(tb_shape_destroy(w, hull));
+    th_assert_result(tb_shape_get_hull_info(w, hull, &info), TB_ERROR_STALE_ID);
+    th_assert_ok(tb_world_step(w, DT));
+}
+
 /* ---- world-level values ----------------------------------------------------------------- */
 
 static void test_bad_step_and_gravity(void** state)
@@ -528,6 +602,8 @@ int main(void)
         T(test_create_many_all_or_none),
         T(test_shape_in_use),
         cmocka_unit_test(test_capacity),
+        T(test_bad_hulls),
+        T(test_hull_shape),
     };
 #undef T
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -30,7 +30,7 @@ typedef struct fixture {
     uint32_t statics;
     uint32_t capacity;        ///< pair capacity of one half
     tb_body_id* ids;          ///< ids of the bodies, in slot order
-    tb_buffer counters, pairs, manifolds, constraints, colour_list, claim, push;
+    tb_buffer counters, pairs, manifolds, constraints, colour_list, colour_work, claim, solver_bodies;
 } fixture;
 
 static tb_buffer host_buffer(tb_world* w, VkDeviceSize bytes, VkBufferUsageFlags extra)
@@ -62,8 +62,9 @@ static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, 
     f->manifolds = host_buffer(w, 2 * cap * sizeof(tb_gpu_manifold), 0);
     f->constraints = host_buffer(w, cap * sizeof(tb_gpu_constraint), 0);
     f->colour_list = host_buffer(w, cap * sizeof(uint32_t), 0);
+    f->colour_work = host_buffer(w, 2 * cap * sizeof(uint32_t), 0);
     f->claim = host_buffer(w, bodies * sizeof(uint32_t), 0);
-    f->push = host_buffer(w, 2 * bodies * sizeof(tb_gpu_vec4), 0);
+    f->solver_bodies = host_buffer(w, bodies * sizeof(tb_gpu_solver_body), 0);
     memset(f->claim.mapped, 0xff, bodies * sizeof(uint32_t));
     tb_pipelines* p = &w->pipelines;
     tb_pipelines_bind(p, TB_BIND_COUNTERS, f->counters.buffer);
@@ -71,8 +72,9 @@ static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, 
     tb_pipelines_bind(p, TB_BIND_MANIFOLDS, f->manifolds.buffer);
     tb_pipelines_bind(p, TB_BIND_CONSTRAINTS, f->constraints.buffer);
     tb_pipelines_bind(p, TB_BIND_COLOUR_LIST, f->colour_list.buffer);
+    tb_pipelines_bind(p, TB_BIND_COLOUR_WORK, f->colour_work.buffer);
     tb_pipelines_bind(p, TB_BIND_BODY_CLAIM, f->claim.buffer);
-    tb_pipelines_bind(p, TB_BIND_BODY_PUSH, f->push.buffer);
+    tb_pipelines_bind(p, TB_BIND_SOLVER_BODIES, f->solver_bodies.buffer);
     tb_graph_invalidate(&w->graph);
     th_assert_ok(tb_solver_init(&f->solver, p));
 }
@@ -96,7 +98,7 @@ static void fixture_destroy(fixture* f)
     tb_world* w = f->w;
     tb_solver_destroy(&f->solver);
     tb_buffer* all[] = { &f->counters, &f->pairs, &f->manifolds, &f->constraints,
-                         &f->colour_list, &f->claim, &f->push };
+                         &f->colour_list, &f->colour_work, &f->claim, &f->solver_bodies };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) tb_buffer_destroy(&w->memory, all[i]);
     free(f->ids);
     th_world_destroy(w);

@@ -40,6 +40,7 @@ static void test_shape_layout(void** state)
 {
     (void)state;
     assert_int_equal(sizeof(tb_gpu_shape), 96);
+    assert_int_equal(sizeof(tb_gpu_solver_body), 96);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_center), 0);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_half), 16);
     assert_int_equal(offsetof(tb_gpu_shape, params), 32);
@@ -57,6 +58,7 @@ static void test_shape_type_values(void** state)
     assert_int_equal(TB_GPU_SHAPE_SPHERE, (unsigned)TB_SHAPE_SPHERE);
     assert_int_equal(TB_GPU_SHAPE_BOX, (unsigned)TB_SHAPE_BOX);
     assert_int_equal(TB_GPU_SHAPE_PLANE, (unsigned)TB_SHAPE_PLANE);
+    assert_int_equal(TB_GPU_SHAPE_HULL, (unsigned)TB_SHAPE_HULL);
 }
 
 /* Two bindings on one index would alias two buffers in the descriptor set. */
@@ -66,11 +68,12 @@ static void test_bindings_distinct(void** state)
     const int b[] = { TB_BIND_PARAMS, TB_BIND_BODY_POS, TB_BIND_BODY_ROT, TB_BIND_BODY_LINVEL,
                       TB_BIND_BODY_ANGVEL, TB_BIND_BODY_INV_INERTIA, TB_BIND_BODY_INFO,
                       TB_BIND_BODY_AABB_MIN, TB_BIND_BODY_AABB_MAX, TB_BIND_SHAPES,
-                      TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS, TB_BIND_BODY_PUSH, TB_BIND_BODY_CLAIM,
+                      TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS, TB_BIND_SOLVER_BODIES, TB_BIND_BODY_CLAIM,
                       TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
                       TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST,
-                      TB_BIND_PREV_MANIFOLDS };
+                      TB_BIND_PREV_MANIFOLDS, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
+                      TB_BIND_COLOUR_WORK };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);

@@ -41,7 +41,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_COUNTERS        10 /* tb_gpu_counters: counts only the GPU knows, flags, indirect args */
 /* Per body slot, GPU-only (sized by the body capacity): */
 #define TB_BIND_BODY_PAIRS      11 /* uvec4[]: owned pairs, x offset y count (even steps), z offset w count (odd) */
-#define TB_BIND_BODY_PUSH       12 /* vec4[2 * cap]: split-impulse pseudo velocity, [2i] linear, [2i+1] angular */
+#define TB_BIND_SOLVER_BODIES   12 /* tb_gpu_solver_body[]: each body as the contact solver works on
+                                      it; apply_forces fills it, integrate moves the body by it */
 #define TB_BIND_BODY_CLAIM      13 /* uint[]: graph colouring claim of each body */
 #define TB_BIND_BODY_PAIR_COUNT 14 /* uint[]: pairs each body owns this step; scanned in place to offsets */
 /* Broadphase grid (sized by the body capacity): */
@@ -65,7 +66,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       outside), then its faces (first | count << 16: the face's
                                       vertex indices at topology[face base + first ...], counter-
                                       clockwise seen from outside), then those indices */
-#define TB_BIND_COUNT           27
+#define TB_BIND_COLOUR_WORK     27 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
+                                      (each pair cap long) the colouring passes read and
+                                      write in turn (tb_gpu_counters.colouring counts them) */
+#define TB_BIND_COUNT           28
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -139,16 +143,31 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
                                  counts every constraint here, colour_finish subtracts the
                                  coloured ones), z batches (subgroup-wide), w contact points */
+    TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z w unused */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
-#define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (64 + 16 * TB_MAX_COLOURS)
+#define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)
+
+/* A body as the contact solver sees it, in one 96-byte record so a constraint touches three
+ * 32-byte sectors per body instead of one per array (velocities, push, pose, inertia, flags),
+ * with the world-space inverse inertia worked out once per step instead of per constraint.
+ * Bodies that are not dynamic have zero inverse mass and inertia and are never written. */
+TB_STRUCT(tb_gpu_solver_body) {
+    TB_VEC4 linear;           /* xyz velocity (m/s), w inverse mass (1/kg) */
+    TB_VEC4 angular;          /* xyz angular velocity (rad/s), w unused */
+    TB_VEC4 push_linear;      /* xyz split-impulse pseudo velocity (m/s), w unused */
+    TB_VEC4 push_angular;     /* xyz split-impulse pseudo angular velocity (rad/s), w unused */
+    TB_VEC4 inv_inertia_diag; /* world inverse inertia tensor: xx, yy, zz; w unused */
+    TB_VEC4 inv_inertia_off;  /* xy, xz, yz; w unused */
+};
 
 /* Push constants of the world's stages that take them (the solver's colour and iteration). */
 TB_STRUCT(tb_gpu_push) {
-    TB_UVEC4 args;            /* x colour (or round), y iteration, z flags, w unused */
+    TB_UVEC4 args;            /* x colour (or round), y iteration (or sub-round), z flags (or
+                                 sub-rounds), w colouring pass (its parity picks the work list) */
 };
 
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed

@@ -20,7 +20,7 @@ layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { ve
 layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
 layout(set = 0, binding = TB_BIND_COUNTERS, std430) coherent buffer Counters { tb_gpu_counters counters; };
 layout(set = 0, binding = TB_BIND_BODY_PAIRS, std430) buffer BodyPairs { uvec4 body_pairs[]; };
-layout(set = 0, binding = TB_BIND_BODY_PUSH, std430) buffer BodyPush { vec4 body_push[]; };
+layout(set = 0, binding = TB_BIND_SOLVER_BODIES, std430) buffer SolverBodies { tb_gpu_solver_body solver_bodies[]; };
 layout(set = 0, binding = TB_BIND_BODY_CLAIM, std430) buffer BodyClaim { uint body_claim[]; };
 layout(set = 0, binding = TB_BIND_BODY_PAIR_COUNT, std430) buffer BodyPairCount { uint body_pair_count[]; };
 layout(set = 0, binding = TB_BIND_GRID_KEYS, std430) buffer GridKeys { uint grid_keys[]; };
@@ -33,7 +33,7 @@ layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_m
 layout(set = 0, binding = TB_BIND_PREV_MANIFOLDS, std430) buffer PrevManifolds { tb_gpu_manifold prev_manifolds[]; };
 layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
 layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
-// Convex hull geometry of the live shapes (boxes too), located by tb_gpu_shape.hull.
+layout(set = 0, binding = TB_BIND_COLOUR_WORK, std430) buffer ColourWork { uint colour_work[]; };
 layout(set = 0, binding = TB_BIND_HULL_VECTORS, std430) readonly buffer HullVectors { vec4 hull_vectors[]; };
 layout(set = 0, binding = TB_BIND_HULL_TOPOLOGY, std430) readonly buffer HullTopology { uint hull_topology[]; };
 

@@ -4,7 +4,8 @@
 // turns by the angle |w| dt about w / |w|, clamped to params.limits.x per step so a wild
 // spin cannot wrap the quaternion update (the stored angular velocity is left alone).
 // For tiny angles sin(a/2)/|w| is replaced by its Taylor series to keep precision.
-// The pose moves with the velocities plus the solver's split-impulse push (body_push), which
+// The velocities come from the solver's record (solver_bodies) and are stored back in the
+// body arrays. The pose moves with them plus the solver's split-impulse push, which
 // recovers penetration; the stored velocities stay without it, so recovery adds no energy.
 // Every slot's colouring claim is released here, even in an abandoned step: the next step's
 // colouring (or this step's redo) then starts clean whether or not apply_forces runs first.
@@ -38,8 +39,11 @@ void main()
     if (step_aborted() || !body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC)) return;
     float dt = params.gravity.w;
     vec4 p = body_pos[i];
-    vec3 v = body_linvel[i].xyz + body_push[2u * i].xyz;
-    vec3 w = body_angvel[i].xyz + body_push[2u * i + 1u].xyz;
+    tb_gpu_solver_body s = solver_bodies[i];
+    body_linvel[i].xyz = s.linear.xyz;
+    body_angvel[i].xyz = s.angular.xyz;
+    vec3 v = s.linear.xyz + s.push_linear.xyz;
+    vec3 w = s.angular.xyz + s.push_angular.xyz;
     body_pos[i] = vec4(p.xyz + v * dt, p.w);
     vec4 turn = rotation_of(w, dt, params.limits.x);
     body_rot[i] = normalize(quat_mul(turn, body_rot[i]));

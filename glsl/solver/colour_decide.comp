@@ -25,19 +25,50 @@ void set_claim(uint body, bool held, uint value)
     if (held && body_is(body, TB_BODY_FLAG_DYNAMIC)) body_claim[body] = value;
 }
 
+// Places this thread's winner in colour `round` of the colour list, after the colours of
+// earlier rounds: one atomic per subgroup.
+void append(bool won, uint round, uint p)
+{
+    uvec4 ballot = subgroupBallot(won);
+    uint winners = subgroupBallotBitCount(ballot);
+    if (winners == 0u) return;
+    uint first = 0u;
+    if (subgroupElect()) first = atomicAdd(counters.colour[round].x, winners);
+    first = subgroupBroadcastFirst(first);
+    if (won)
+        colour_list[counters.colour[round].y + first + subgroupBallotExclusiveBitCount(ballot)] = p;
+}
+
+// Appends the constraints still uncoloured to the work list the next pass reads: one atomic
+// per subgroup.
+void keep_for_next_pass(bool keep, uint p)
+{
+    uvec4 ballot = subgroupBallot(keep);
+    uint kept = subgroupBallotBitCount(ballot);
+    if (kept == 0u) return;
+    uint list = (push.args.w & 1u) ^ 1u, first = 0u;
+    if (subgroupElect())
+        first = list == 0u ? atomicAdd(counters.colouring.x, kept)
+                           : atomicAdd(counters.colouring.y, kept);
+    first = subgroupBroadcastFirst(first);
+    if (keep)
+        colour_work[list * params.capacity.x + first + subgroupBallotExclusiveBitCount(ballot)] = p;
+}
+
 void main()
 {
     if (step_aborted()) return;
-    uint p = pair_thread_index();
     uint round = push.args.x;
     bool another_sub_round = push.args.y + 1u < push.args.z && round + 1u < TB_MAX_COLOURS;
     if (round >= TB_MAX_COLOURS) return;
-    bool won = false;
-    if (p < counters.state.z) {
+    uint p = colour_work_item(pair_thread_index());
+    bool won = false, constraint = false;
+    if (p != TB_NO_COLOUR) {
         uint at = pair_half_base() + p;
         uvec4 pair = pairs[at];
         uint v = colour_claim_value(p, round);
-        if (pair.z == TB_NO_COLOUR && manifolds[p].info.x > 0u && v != TB_CLAIM_FREE) {
+        constraint = push.args.w != 0u || manifolds[p].info.x > 0u;
+        if (constraint && v != TB_CLAIM_FREE) {
             bool holds_a = holds_claim(pair.x, v), holds_b = holds_claim(pair.y, v);
             won = holds_a && holds_b;
             if (won) pairs[at].z = round;
@@ -48,12 +79,6 @@ void main()
             }
         }
     }
-    uvec4 ballot = subgroupBallot(won);
-    uint winners = subgroupBallotBitCount(ballot);
-    if (winners == 0u) return;
-    uint first = 0u;
-    if (subgroupElect()) first = atomicAdd(counters.colour[round].x, winners);
-    first = subgroupBroadcastFirst(first);
-    if (won)
-        colour_list[counters.colour[round].y + first + subgroupBallotExclusiveBitCount(ballot)] = p;
+    append(won, round, p);
+    keep_for_next_pass(constraint && !won, p);
 }

@@ -22,6 +22,12 @@
 //
 // Every decision depends only on the claims, not on the order of the atomics: the same pairs
 // give the same colours on every run.
+//
+// Work lists: only the first pass looks at every pair. Its decide pass appends each
+// constraint that did not win to a work list, and every later pass reads only the list the
+// pass before it wrote (push.args.w is the pass number; list w & 1 is read, the other is
+// written), so a round costs what is left to colour rather than all pairs. The lists are
+// unordered (appends race), which changes nothing: decisions depend on claims alone.
 #ifndef TB_COLOURING_GLSL
 #define TB_COLOURING_GLSL
 
@@ -55,6 +61,17 @@ uint colour_claim_value(uint p, uint round)
 uint colour_taken_mark(uint round)
 {
     return ((TB_MAX_COLOURS - 1u - round) << TB_COLOUR_INDEX_BITS) - 1u;
+}
+
+// The constraint that work item i of this pass stands for, or TB_NO_COLOUR past the end:
+// the first pass covers every pair of the step, later ones the list the pass before wrote.
+uint colour_work_item(uint i)
+{
+    uint pass = push.args.w;
+    if (pass == 0u) return i < counters.state.z ? i : TB_NO_COLOUR;
+    uint list = pass & 1u;
+    uint length = list == 0u ? counters.colouring.x : counters.colouring.y;
+    return i < length ? colour_work[list * params.capacity.x + i] : TB_NO_COLOUR;
 }
 
 #endif

@@ -36,7 +36,7 @@ void main()
     uint count = min(m.info.x, uint(TB_MAX_MANIFOLD_POINTS));
     if (count == 0u) return;
     uvec4 pair = pairs[at];
-    solver_body a = solver_body_load(pair.x), b = solver_body_load(pair.y);
+    solver_body a = solver_body_from_arrays(pair.x), b = solver_body_from_arrays(pair.y);
     vec3 pa = body_pos[pair.x].xyz, pb = body_pos[pair.y].xyz;
     vec3 n = m.normal.xyz, t1, t2;
     tangent_basis(n, t1, t2);

@@ -18,7 +18,7 @@
 // previous step's impulses (warm start) to every constraint.
 //
 // Penetration is recovered by split impulses: a second accumulated normal impulse
-// (impulse.w) drives pseudo velocities (body_push) towards a recovery rate; integrate moves
+// (impulse.w) drives pseudo velocities (solver_bodies push) towards a recovery rate; integrate moves
 // the pose with v + push but keeps v. A positional bias in the real velocity would turn
 // penetration into kinetic energy, so deep contacts would pop apart and stacks would jitter;
 // split impulses move the bodies apart without making them faster.

@@ -115,6 +115,30 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
     return add_shape(w, &rec, &gpu, out);
 }
 
+/* Hulls (boxes too) own their geometry; the hull table packs it for the GPU. */
+static tb_result add_hull_shape(tb_world* w, tb_shape_record* rec, tb_gpu_shape* gpu,
+                                tb_hull* hull, tb_shape_id* out)
+{
+    rec->hull = malloc(sizeof *rec->hull);
+    if (!rec->hull) {
+        tb_hull_free(hull);
+        return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    }
+    *rec->hull = *hull;
+    tb_result r = add_shape(w, rec, gpu, out);
+    if (r) tb_shape_release_hull(rec);
+    else w->hulls.dirty = 1;
+    return r;
+}
+
+void tb_shape_release_hull(tb_shape_record* s)
+{
+    if (!s->hull) return;
+    tb_hull_free(s->hull);
+    free(s->hull);
+    s->hull = NULL;
+}
+
 tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, tb_shape_id* out)
 {
     tb_result r = check_material(w, def, out);
@@ -128,7 +152,40 @@ tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, t
     rec.unit_inertia = (tb_vec3){ (float)((y2 + z2) / 3), (float)((x2 + z2) / 3),
                                   (float)((x2 + y2) / 3) };
     tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_BOX, h, (tb_gpu_vec4){ h.x, h.y, h.z, 0 });
-    return add_shape(w, &rec, &gpu, out);
+    tb_hull hull;
+    char error[256];
+    if (tb_hull_box((const float[3]){ h.x, h.y, h.z }, &hull, error, sizeof error))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box: %s", error);
+    return add_hull_shape(w, &rec, &gpu, &hull, out);
+}
+
+tb_result tb_shape_create_hull(tb_world* w, const tb_shape_def* def, const tb_vec3* points,
+                               uint32_t count, tb_shape_id* out)
+{
+    tb_result r = check_material(w, def, out);
+    if (r) return r;
+    if (!points) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "hull points are NULL");
+    float* xyz = malloc(((size_t)count + 1) * 3 * sizeof *xyz);
+    if (!xyz) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    for (uint32_t i = 0; i < count; i++) {
+        xyz[3 * i] = points[i].x;
+        xyz[3 * i + 1] = points[i].y;
+        xyz[3 * i + 2] = points[i].z;
+    }
+    tb_hull hull;
+    char error[256];
+    int failed = tb_hull_build(xyz, count, &hull, error, sizeof error);
+    free(xyz);
+    if (failed) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "convex hull: %s", error);
+    tb_shape_record rec = { .type = TB_SHAPE_HULL, .material = *def, .volume = (float)hull.volume };
+    rec.unit_inertia = (tb_vec3){ (float)hull.unit_inertia[0], (float)hull.unit_inertia[1],
+                                  (float)hull.unit_inertia[2] };
+    tb_vec3 lo = { hull.aabb_min[0], hull.aabb_min[1], hull.aabb_min[2] };
+    tb_vec3 hi = { hull.aabb_max[0], hull.aabb_max[1], hull.aabb_max[2] };
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_HULL, (tb_vec3){ (hi.x - lo.x) / 2,
+                                 (hi.y - lo.y) / 2, (hi.z - lo.z) / 2 }, (tb_gpu_vec4){ 0 });
+    gpu.aabb_center = (tb_gpu_vec4){ (hi.x + lo.x) / 2, (hi.y + lo.y) / 2, (hi.z + lo.z) / 2, 0 };
+    return add_hull_shape(w, &rec, &gpu, &hull, out);
 }
 
 tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
@@ -158,6 +215,8 @@ tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
         return tb_fail(&w->diag, TB_ERROR_IN_USE, "shape is used by %u bodies; destroy them first",
                        s->users);
     s->alive = 0;
+    if (s->hull) w->hulls.dirty = 1;
+    tb_shape_release_hull(s);
     tb_slots_give(&w->shape_slots, slot);
     return TB_OK;
 }
@@ -177,4 +236,53 @@ tb_result tb_shape_get_type(const tb_world* cw, tb_shape_id id, tb_shape_type* o
     tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
     if (s && out) *out = s->type;
     return r;
+}
+
+/* A hull shape's record, or an error naming what the id is instead. */
+static const tb_hull* hull_of(tb_world* w, tb_shape_id id, tb_result* r)
+{
+    uint32_t slot;
+    tb_shape_record* s = tb_shape_lookup(w, id, &slot, r);
+    if (!s) return NULL;
+    if (s->type != TB_SHAPE_HULL) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a hull",
+                     id.index1, id.world, id.generation);
+        return NULL;
+    }
+    return s->hull;
+}
+
+tb_result tb_shape_get_hull_info(const tb_world* cw, tb_shape_id id, tb_hull_info* out)
+{
+    tb_world* w = (tb_world*)cw;
+    tb_result r;
+    const tb_hull* h = hull_of(w, id, &r);
+    if (!h) return r;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = (tb_hull_info){
+        .vertex_count = h->vertex_count, .face_count = h->face_count,
+        .edge_count = h->edge_count, .volume = (float)h->volume,
+        .center_of_mass = { (float)h->center[0], (float)h->center[1], (float)h->center[2] },
+        .principal_axes = { (float)h->rotation[0], (float)h->rotation[1], (float)h->rotation[2],
+                            (float)h->rotation[3] },
+        .unit_inertia = { (float)h->unit_inertia[0], (float)h->unit_inertia[1],
+                          (float)h->unit_inertia[2] },
+    };
+    return TB_OK;
+}
+
+tb_result tb_shape_get_hull_vertices(const tb_world* cw, tb_shape_id id, tb_vec3* out,
+                                     uint32_t capacity, uint32_t* count)
+{
+    tb_world* w = (tb_world*)cw;
+    tb_result r;
+    const tb_hull* h = hull_of(w, id, &r);
+    if (!h) return r;
+    if (!count || (!out && capacity))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "count is NULL, or out is NULL "
+                       "with a capacity");
+    for (uint32_t i = 0; i < h->vertex_count && i < capacity; i++)
+        out[i] = (tb_vec3){ h->vertices[i][0], h->vertices[i][1], h->vertices[i][2] };
+    *count = h->vertex_count;
+    return TB_OK;
 }

@@ -87,6 +87,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (r) return r;
     tb_pipelines_bind(&w->pipelines, TB_BIND_PARAMS, w->params_buffer.buffer);
     r = create_shape_buffer(w, INITIAL_SHAPE_CAPACITY);
+    if (!r) r = tb_hull_table_init(w);
     if (!r) r = tb_body_store_init(&w->store, &w->memory, &w->pipelines, &w->transfer,
                                    def->initial_body_capacity);
     uint32_t pairs = def->initial_pair_capacity ? def->initial_pair_capacity
@@ -151,6 +152,7 @@ void tb_world_destroy(tb_world* w)
         tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);
         tb_buffer_destroy(&w->memory, &w->shape_buffer);
+        tb_hull_table_destroy(w);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
         tb_transfer_destroy(&w->transfer);
         tb_pipelines_destroy(&w->pipelines);
@@ -160,6 +162,7 @@ void tb_world_destroy(tb_world* w)
     tb_slots_free(&w->body_slots);
     tb_slots_free(&w->shape_slots);
     free(w->bodies);
+    for (uint32_t i = 0; i < w->shape_slots.used; i++) tb_shape_release_hull(&w->shapes[i]);
     free(w->shapes);
     free(w->gpu_shapes);
     free(w);
@@ -215,7 +218,8 @@ static void write_params(tb_world* w, float dt)
 
 tb_result tb_world_prepare_shapes(tb_world* w)
 {
-    if (w->shape_slots.used <= w->shape_buffer_capacity) return TB_OK;
+    tb_result r = tb_hull_table_prepare(w);
+    if (r || w->shape_slots.used <= w->shape_buffer_capacity) return r;
     uint32_t cap = w->shape_buffer_capacity * 2;
     while (cap < w->shape_slots.used) cap *= 2;
     return create_shape_buffer(w, cap);
@@ -226,7 +230,8 @@ tb_result tb_world_prepare_shapes(tb_world* w)
 static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const void** landing)
 {
     VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
-    VkDeviceSize bytes = shape_bytes + tb_body_store_upload_bytes(&w->store) +
+    VkDeviceSize bytes = shape_bytes + tb_hull_table_upload_bytes(w) +
+                         tb_body_store_upload_bytes(&w->store) +
                          tb_body_store_download_bytes(&w->store, mask) + 64;
     tb_transfer* t = &w->transfer;
     tb_result r = tb_transfer_begin(t, bytes);
@@ -240,6 +245,7 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
         if (dst) memcpy(dst, w->gpu_shapes, shape_bytes);
         w->shapes_dirty = 0;
     }
+    tb_hull_table_record_upload(w, t);
     tb_body_store_record_uploads(&w->store, t);
     if (mask) {
         tb_transfer_barrier(t);
@@ -261,7 +267,8 @@ tb_result tb_world_fetch(tb_world* w, uint32_t mask)
 
 tb_result tb_world_flush(tb_world* w)
 {
-    if (!w->store.dirty_count && !w->shapes_dirty && w->shape_slots.used <= w->shape_buffer_capacity)
+    if (!w->store.dirty_count && !w->shapes_dirty && !w->hulls.dirty &&
+        w->shape_slots.used <= w->shape_buffer_capacity)
         return TB_OK;
     tb_result r = tb_world_prepare_shapes(w);
     if (!r) r = record_transfer(w, 0.0f, 0, NULL);

@@ -3,6 +3,7 @@
 #define TB_WORLD_H
 
 #include "api/diag.h"
+#include "geom/hull.h"
 #include "gpu/bodies.h"
 #include "gpu/graph.h"
 #include "gpu/memory.h"
@@ -43,7 +44,19 @@ typedef struct tb_shape_record {
     float volume;           ///< m^3; 0 for planes
     tb_vec3 unit_inertia;   ///< principal moments of inertia per kg of mass
     uint32_t users;         ///< live bodies using the shape
+    tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
 } tb_shape_record;
+
+/// Every live hull's GPU data, packed (src/api/hulls.c).
+typedef struct tb_hull_table {
+    tb_buffer vector_buffer, topology_buffer;
+    uint32_t vector_capacity, topology_capacity; ///< elements of the buffers and host images
+    tb_gpu_vec4* vectors;        ///< host image of hull_vectors
+    uint32_t* topology;          ///< host image of hull_topology
+    uint32_t vectors_used, topology_used;
+    int dirty;                   ///< a hull shape came or went: pack again
+    int upload;                  ///< packed data not yet uploaded
+} tb_hull_table;
 
 /// Generic slot table bookkeeping: free slots are reused last-in first-out.
 typedef struct tb_slots {
@@ -90,6 +103,7 @@ struct tb_world {
     tb_buffer shape_buffer;
     uint32_t shape_buffer_capacity;
     int shapes_dirty;
+    tb_hull_table hulls;
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
     uint64_t steps, submits;
@@ -115,6 +129,14 @@ tb_result tb_world_fetch(tb_world* w, uint32_t mask);
 /// Make room for `slots` body slots on the GPU.
 tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots);
 
+/* hulls.c */
+tb_result tb_hull_table_init(tb_world* w);
+void tb_hull_table_destroy(tb_world* w);
+/// Pack the hulls again if shapes changed (may replace the buffers).
+tb_result tb_hull_table_prepare(tb_world* w);
+VkDeviceSize tb_hull_table_upload_bytes(const tb_world* w);
+void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer);
+
 /* step.c */
 tb_result tb_step_kernels_create(tb_world* w);
 void tb_step_kernels_destroy(tb_world* w);
@@ -130,5 +152,7 @@ tb_result tb_check_rotation(tb_diag* diag, tb_quat q, tb_quat* out, const char* 
 /* body.c / shape.c lookups: the record of a valid id, or an error and NULL. */
 tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r);
 tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
+/// Free a shape's hull geometry, if it has any.
+void tb_shape_release_hull(tb_shape_record* s);
 
 #endif

@@ -7,7 +7,7 @@
                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
 
 static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
-    [TB_SIM_BODY_PAIRS] = TB_BIND_BODY_PAIRS, [TB_SIM_BODY_PUSH] = TB_BIND_BODY_PUSH,
+    [TB_SIM_BODY_PAIRS] = TB_BIND_BODY_PAIRS, [TB_SIM_SOLVER_BODIES] = TB_BIND_SOLVER_BODIES,
     [TB_SIM_BODY_CLAIM] = TB_BIND_BODY_CLAIM, [TB_SIM_BODY_PAIR_COUNT] = TB_BIND_BODY_PAIR_COUNT,
     [TB_SIM_GRID_KEYS] = TB_BIND_GRID_KEYS, [TB_SIM_GRID_BODIES] = TB_BIND_GRID_BODIES,
     [TB_SIM_GRID_TABLE] = TB_BIND_GRID_TABLE, [TB_SIM_LARGE_FLAGS] = TB_BIND_LARGE_FLAGS,
@@ -17,6 +17,7 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = TB_BIND_MANIFOLDS,
     [TB_SIM_CONSTRAINTS] = TB_BIND_CONSTRAINTS, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
+    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK,
     [TB_SIM_PREV_MANIFOLDS] = TB_BIND_PREV_MANIFOLDS,
 };
 
@@ -26,7 +27,7 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
 {
     switch (b) {
     case TB_SIM_BODY_PAIRS: return (VkDeviceSize)capacity * 16;
-    case TB_SIM_BODY_PUSH: return (VkDeviceSize)capacity * 32;
+    case TB_SIM_SOLVER_BODIES: return (VkDeviceSize)capacity * sizeof(tb_gpu_solver_body);
     case TB_SIM_GRID_TABLE: return (VkDeviceSize)table_size * 8;
     case TB_SIM_BODY_SCRATCH: {
         VkDeviceSize a = tb_prims_sort_scratch(sim->prims, capacity);
@@ -48,6 +49,7 @@ static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
     case TB_SIM_MANIFOLDS:
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
+    case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
     default: return (VkDeviceSize)capacity * 4;
     }
 }
@@ -114,7 +116,7 @@ tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
     uint32_t bits = table_bits_for(capacity);
     tb_buffer fresh[TB_SIM_BODY_BUFFER_COUNT];
     memset(fresh, 0, sizeof fresh);
-    tb_result r = check_range(sim, body_bytes(sim, TB_SIM_BODY_PUSH, capacity, 0), "bodies");
+    tb_result r = check_range(sim, body_bytes(sim, TB_SIM_SOLVER_BODIES, capacity, 0), "bodies");
     if (!r) r = tb_transfer_begin(t, 0);
     if (r) return r;
     for (int b = 0; b < TB_SIM_BODY_BUFFER_COUNT && !r; b++) {

@@ -57,6 +57,18 @@ static tb_pass per_pair(VkPipeline pipeline, VkBuffer counters, uint32_t x, uint
                              TB_COUNTERS_PAIR_DISPATCH_OFFSET, x, y, z);
 }
 
+/* A colouring pass: per pair, and push w numbers the pass (it picks the work lists). */
+static tb_pass colouring_pass(VkPipeline pipeline, VkBuffer counters, uint32_t round,
+                              uint32_t sub, uint32_t subs, uint32_t pass_number)
+{
+    tb_pass pass = per_pair(pipeline, counters, round, sub, subs);
+    tb_gpu_push push;
+    memcpy(&push, pass.push, sizeof push);
+    push.args.w = pass_number;
+    memcpy(pass.push, &push, sizeof push);
+    return pass;
+}
+
 static tb_result check_rounds(const tb_solver* s, uint32_t rounds)
 {
     if (rounds >= 1 && rounds <= TB_MAX_COLOURS) return TB_OK;
@@ -70,12 +82,14 @@ tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkB
     tb_result r = check_rounds(s, rounds);
     if (!r && sub_rounds == 0)
         r = tb_fail(s->pipelines->gpu->diag, TB_ERROR_INVALID_ARGUMENT, "sub_rounds must be >= 1");
+    uint32_t pass_number = 0;
     for (uint32_t round = 0; round < rounds && !r; round++) {
         /* The last possible round's taken mark would read as free: it gets one sub-round. */
         uint32_t subs = round + 1 < TB_MAX_COLOURS ? sub_rounds : 1;
-        for (uint32_t sub = 0; sub < subs && !r; sub++) {
-            tb_pass claim = per_pair(s->colour_claim, counters, round, sub, subs);
-            tb_pass decide = per_pair(s->colour_decide, counters, round, sub, subs);
+        for (uint32_t sub = 0; sub < subs && !r; sub++, pass_number++) {
+            tb_pass claim = colouring_pass(s->colour_claim, counters, round, sub, subs, pass_number);
+            tb_pass decide = colouring_pass(s->colour_decide, counters, round, sub, subs,
+                                            pass_number);
             r = add(s, list, &claim);
             if (!r) r = add(s, list, &decide);
         }

@@ -28,11 +28,38 @@ float scene_rng_signed(uint32_t* state);
 int scene_vec3_finite(tb_vec3 v);
 int scene_quat_finite(tb_quat q);
 
+/// Deepest overlap among the last step's contact points, m (0 when none overlap).
+tb_result scene_max_penetration(tb_world* world, double* out);
+/// Append a named figure to `out` (dropped beyond SCENE_MAX_CHECKS).
+void scene_put(scene_checks* out, const char* key, double value);
+
 /* piles.c */
+/* The pile scenes' grid of start positions and their container. */
+typedef struct pile_layout {
+    uint32_t side;           ///< columns along x and along z
+    uint32_t layers;
+    float pitch;             ///< centre to centre, m
+    float half_width;        ///< interior half width, m
+    float height;            ///< interior height (walls), m
+} pile_layout;
+
+/// A footprint about as wide as the pile is tall, walls above the top of the grid.
+pile_layout pile_layout_for(uint32_t n);
+/// Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw].
+tb_result pile_build_container(tb_world* world, const pile_layout* layout);
+/// Jittered start of body i: cells of one layer first, layers upwards.
+tb_vec3 pile_grid_slot(const pile_layout* layout, uint32_t i, uint32_t* rng);
 tb_result spheres_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result boxes_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result mixed_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
+
+/* stacks.c */
+tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result pyramid_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result stack_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                      scene_checks* out);
+uint32_t pyramid_base(uint32_t n);
 
 #endif

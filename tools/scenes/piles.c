@@ -16,16 +16,8 @@
 
 typedef enum pile_kind { PILE_SPHERES, PILE_BOXES, PILE_MIXED } pile_kind;
 
-typedef struct pile_layout {
-    uint32_t side;           ///< columns along x and along z
-    uint32_t layers;
-    float pitch;             ///< centre to centre, m
-    float half_width;        ///< interior half width, m
-    float height;            ///< interior height (walls), m
-} pile_layout;
-
 /* A footprint about as wide as the pile is tall, walls above the top of the grid. */
-static pile_layout layout_for(uint32_t n)
+pile_layout pile_layout_for(uint32_t n)
 {
     pile_layout l;
     l.side = (uint32_t)ceil(cbrt((double)(n ? n : 1)));
@@ -52,7 +44,7 @@ static tb_result add_static_box(tb_world* w, tb_vec3 centre, tb_vec3 half)
 }
 
 /* Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw]. */
-static tb_result build_container(tb_world* w, const pile_layout* l)
+tb_result pile_build_container(tb_world* w, const pile_layout* l)
 {
     float hw = l->half_width, hh = 0.5f * l->height, outer = hw + 2.0f * WALL;
     tb_result r = add_static_box(w, (tb_vec3){ 0, -WALL, 0 }, (tb_vec3){ outer, WALL, outer });
@@ -63,7 +55,7 @@ static tb_result build_container(tb_world* w, const pile_layout* l)
     return r;
 }
 
-static tb_vec3 grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
+tb_vec3 pile_grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
 {
     uint32_t x = i % l->side, z = (i / l->side) % l->side, y = i / (l->side * l->side);
     tb_vec3 p;
@@ -78,7 +70,7 @@ static tb_result pile_build(tb_world* w, const scene_params* params, pile_kind k
 {
     *out = NULL;
     uint32_t n = params->n;
-    pile_layout l = layout_for(n);
+    pile_layout l = pile_layout_for(n);
     tb_shape_def sd = tb_default_shape_def();
     tb_shape_id sphere, box;
     tb_result r = tb_shape_create_sphere(w, &sd, PILE_SIZE, &sphere);
@@ -91,12 +83,12 @@ static tb_result pile_build(tb_world* w, const scene_params* params, pile_kind k
         tb_body_def d = tb_default_body_def();
         int use_box = kind == PILE_BOXES || (kind == PILE_MIXED && (i % 2) == 1);
         d.shape = use_box ? box : sphere;
-        d.position = grid_slot(&l, i, &rng);
+        d.position = pile_grid_slot(&l, i, &rng);
         defs[i] = d;
     }
     /* Dynamic bodies first, so their ids lead the instance's list. */
     if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
-    if (r == TB_OK) r = build_container(w, &l);
+    if (r == TB_OK) r = pile_build_container(w, &l);
     free(defs);
     if (r != TB_OK) {
         instance_free(inst);
@@ -131,7 +123,7 @@ static int outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi)
 }
 
 /* Deepest overlap among the last step's contact points, m (0 when none overlap). */
-static tb_result max_penetration(tb_world* w, double* out)
+tb_result scene_max_penetration(tb_world* w, double* out)
 {
     *out = 0.0;
     uint32_t count = 0;
@@ -146,7 +138,7 @@ static tb_result max_penetration(tb_world* w, double* out)
     return r;
 }
 
-static void put(scene_checks* out, const char* key, double value)
+void scene_put(scene_checks* out, const char* key, double value)
 {
     if (out->count < SCENE_MAX_CHECKS) {
         out->items[out->count].key = key;
@@ -174,19 +166,19 @@ tb_result pile_check(tb_world* w, const scene_instance* inst, uint32_t steps, fl
         if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < REST_SPEED) resting++;
     }
     double depth = 0.0;
-    if (r == TB_OK) r = max_penetration(w, &depth);
+    if (r == TB_OK) r = scene_max_penetration(w, &depth);
     tb_world_stats st;
     if (r == TB_OK) r = tb_world_get_stats(w, &st);
     if (r == TB_OK) {
         out->count = 0;
-        put(out, "nan", nan);
-        put(out, "escaped", escaped);
-        put(out, "max_penetration", depth);
-        put(out, "pairs", st.pair_count);
-        put(out, "contacts", st.contact_count);
-        put(out, "batches", st.batch_count);
-        put(out, "colours", st.colour_count);
-        put(out, "resting", n ? (double)resting / n : 1.0);
+        scene_put(out, "nan", nan);
+        scene_put(out, "escaped", escaped);
+        scene_put(out, "max_penetration", depth);
+        scene_put(out, "pairs", st.pair_count);
+        scene_put(out, "contacts", st.contact_count);
+        scene_put(out, "batches", st.batch_count);
+        scene_put(out, "colours", st.colour_count);
+        scene_put(out, "resting", n ? (double)resting / n : 1.0);
     }
     free(pos);
     free(rot);

@@ -227,6 +227,12 @@ static const scene scenes[] = {
       boxes_build, pile_check, instance_free },
     { "pile", "spheres and boxes (half each) dropped into a walled box: the default "
               "scene", 1.0f / 60.0f, 4000, 360, mixed_build, pile_check, instance_free },
+    { "stack", "N unit boxes in one column at rest on a plane; checks drift (largest "
+               "displacement, m), nan, fallen", 1.0f / 60.0f, 10, 1000,
+      stack_build, stack_check, instance_free },
+    { "pyramid", "2-D pyramid of unit boxes on a plane, base b with b(b+1)/2 <= N; checks "
+                 "drift, nan, fallen", 1.0f / 60.0f, 55, 1000,
+      pyramid_build, stack_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))

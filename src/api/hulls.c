@@ -1,0 +1,163 @@
+/* The GPU hull table: the hull data of every live hull and box shape, packed into the two
+ * buffers bound at TB_BIND_HULL_VECTORS and TB_BIND_HULL_TOPOLOGY (layout in layout.h).
+ *
+ * Shapes are few and change rarely next to bodies, so any change marks the table dirty and
+ * the next upload packs every live hull again, in slot order, rewriting each shape's
+ * locator (tb_gpu_shape.hull). The buffers grow to the next power of two when the packed
+ * data outgrows them; that replaces a binding, so the step is recorded again.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "api/world.h"
+
+#define INITIAL_VECTORS 256u
+#define INITIAL_TOPOLOGY 1024u
+
+static uint32_t hull_vector_count(const tb_hull* h)
+{
+    return h->vertex_count + h->face_count;
+}
+
+/* Edges (two words each), face entries, face vertex indices. */
+static uint32_t hull_topology_count(const tb_hull* h)
+{
+    return 2 * h->edge_count + h->face_count + h->index_count;
+}
+
+static tb_result create_buffer(tb_world* w, uint32_t binding, VkDeviceSize bytes, tb_buffer* buf)
+{
+    tb_buffer_destroy(&w->memory, buf);
+    tb_result r = tb_buffer_create(&w->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, buf);
+    if (r) return r;
+    tb_pipelines_bind(&w->pipelines, binding, buf->buffer);
+    tb_graph_invalidate(&w->graph);
+    w->buffer_generation++;
+    return TB_OK;
+}
+
+/* Host images at least as large as the GPU buffers, so packing never reallocates twice. */
+static tb_result grow(tb_world* w, uint32_t vectors, uint32_t topology)
+{
+    tb_hull_table* t = &w->hulls;
+    if (vectors > t->vector_capacity) {
+        uint32_t cap = t->vector_capacity;
+        while (cap < vectors) cap *= 2;
+        tb_gpu_vec4* host = realloc(t->vectors, cap * sizeof *host);
+        if (!host) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+        t->vectors = host;
+        tb_result r = create_buffer(w, TB_BIND_HULL_VECTORS, cap * sizeof *host, &t->vector_buffer);
+        if (r) return r;
+        t->vector_capacity = cap;
+    }
+    if (topology > t->topology_capacity) {
+        uint32_t cap = t->topology_capacity;
+        while (cap < topology) cap *= 2;
+        uint32_t* host = realloc(t->topology, cap * sizeof *host);
+        if (!host) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+        t->topology = host;
+        tb_result r = create_buffer(w, TB_BIND_HULL_TOPOLOGY, cap * sizeof *host,
+                                    &t->topology_buffer);
+        if (r) return r;
+        t->topology_capacity = cap;
+    }
+    return TB_OK;
+}
+
+tb_result tb_hull_table_init(tb_world* w)
+{
+    tb_hull_table* t = &w->hulls;
+    t->vector_capacity = INITIAL_VECTORS / 2;
+    t->topology_capacity = INITIAL_TOPOLOGY / 2;
+    t->dirty = 1;
+    return grow(w, INITIAL_VECTORS, INITIAL_TOPOLOGY);
+}
+
+void tb_hull_table_destroy(tb_world* w)
+{
+    tb_hull_table* t = &w->hulls;
+    tb_buffer_destroy(&w->memory, &t->vector_buffer);
+    tb_buffer_destroy(&w->memory, &t->topology_buffer);
+    free(t->vectors);
+    free(t->topology);
+    memset(t, 0, sizeof *t);
+}
+
+/* Write one hull at the given bases and point its shape at it. */
+static void pack_hull(tb_world* w, const tb_hull* h, uint32_t vbase, uint32_t tbase,
+                      tb_gpu_shape* shape)
+{
+    tb_hull_table* t = &w->hulls;
+    for (uint32_t i = 0; i < h->vertex_count; i++)
+        t->vectors[vbase + i] = (tb_gpu_vec4){ h->vertices[i][0], h->vertices[i][1],
+                                               h->vertices[i][2], 0.0f };
+    uint32_t pbase = vbase + h->vertex_count;
+    for (uint32_t f = 0; f < h->face_count; f++)
+        t->vectors[pbase + f] = (tb_gpu_vec4){ h->planes[f][0], h->planes[f][1],
+                                               h->planes[f][2], h->planes[f][3] };
+    for (uint32_t e = 0; e < h->edge_count; e++) {
+        const tb_hull_edge* edge = &h->edges[e];
+        t->topology[tbase + 2 * e] = edge->v0 | (uint32_t)edge->v1 << 16;
+        t->topology[tbase + 2 * e + 1] = edge->left | (uint32_t)edge->right << 16;
+    }
+    /* Face entries, then the indices; a face's first index counts from the face base. */
+    uint32_t fbase = tbase + 2 * h->edge_count;
+    for (uint32_t f = 0; f < h->face_count; f++)
+        t->topology[fbase + f] = (h->face_count + h->faces[f].first) | h->faces[f].count << 16;
+    for (uint32_t i = 0; i < h->index_count; i++)
+        t->topology[fbase + h->face_count + i] = h->indices[i];
+    shape->info.y = h->vertex_count;
+    shape->info.z = h->face_count;
+    shape->info.w = h->edge_count;
+    shape->hull = (tb_gpu_uvec4){ vbase, pbase, tbase, fbase };
+}
+
+tb_result tb_hull_table_prepare(tb_world* w)
+{
+    tb_hull_table* t = &w->hulls;
+    if (!t->dirty) return TB_OK;
+    uint32_t vectors = 0, topology = 0;
+    for (uint32_t s = 0; s < w->shape_slots.used; s++) {
+        const tb_shape_record* rec = &w->shapes[s];
+        if (!rec->alive || !rec->hull) continue;
+        vectors += hull_vector_count(rec->hull);
+        topology += hull_topology_count(rec->hull);
+    }
+    tb_result r = grow(w, vectors, topology);
+    if (r) return r;
+    uint32_t vbase = 0, tbase = 0;
+    for (uint32_t s = 0; s < w->shape_slots.used; s++) {
+        const tb_shape_record* rec = &w->shapes[s];
+        if (!rec->alive || !rec->hull) continue;
+        pack_hull(w, rec->hull, vbase, tbase, &w->gpu_shapes[s]);
+        vbase += hull_vector_count(rec->hull);
+        tbase += hull_topology_count(rec->hull);
+    }
+    t->vectors_used = vectors;
+    t->topology_used = topology;
+    t->dirty = 0;
+    t->upload = 1;
+    w->shapes_dirty = 1;
+    return TB_OK;
+}
+
+VkDeviceSize tb_hull_table_upload_bytes(const tb_world* w)
+{
+    const tb_hull_table* t = &w->hulls;
+    if (!t->upload) return 0;
+    return t->vectors_used * sizeof(tb_gpu_vec4) + t->topology_used * sizeof(uint32_t);
+}
+
+void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer)
+{
+    tb_hull_table* t = &w->hulls;
+    if (!t->upload) return;
+    VkDeviceSize vbytes = t->vectors_used * sizeof(tb_gpu_vec4);
+    VkDeviceSize tbytes = t->topology_used * sizeof(uint32_t);
+    void* dst = vbytes ? tb_transfer_upload(transfer, t->vector_buffer.buffer, 0, vbytes) : NULL;
+    if (dst) memcpy(dst, t->vectors, vbytes);
+    dst = tbytes ? tb_transfer_upload(transfer, t->topology_buffer.buffer, 0, tbytes) : NULL;
+    if (dst) memcpy(dst, t->topology, tbytes);
+    t->upload = 0;
+}
