@@ -38,15 +38,11 @@
 
 /* ---- plumbing: the kernel's buffers, one dispatch, read back ---------------------------- */
 
-enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS,
-       BUF_HULL_VECTORS, BUF_HULL_TOPOLOGY, BUF_COUNT };
+enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS, BUF_COUNT };
 static const uint32_t rig_binding[BUF_COUNT] = { TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS,
                                                  TB_BIND_PAIRS, TB_BIND_MANIFOLDS,
-                                                 TB_BIND_PREV_MANIFOLDS, TB_BIND_HULL_VECTORS,
-                                                 TB_BIND_HULL_TOPOLOGY };
-/* Hull data the rig holds for its shapes (boxes carry their hull too, as in the world). */
-#define HULL_VECTOR_CAP (1u << 16)
-#define HULL_TOPOLOGY_CAP (1u << 17)
+                                                 TB_BIND_PREV_MANIFOLDS };
+/* Most hull and box shapes a rig keeps the geometry of, in double. */
 #define HULL_CAP 1024u
 
 /* A convex hull in double, body frame, with the topology conventions of src/geom/hull.h:
@@ -79,10 +75,8 @@ typedef struct rig {
                                      binds its half's as this step's, the other's as last
                                      step's */
     uint32_t made;                /* shapes made, to vary their materials */
-    tb_gpu_vec4* hull_vectors;    /* HULL_VECTOR_CAP */
-    uint32_t* hull_topology;      /* HULL_TOPOLOGY_CAP */
-    uint32_t vectors_used, topology_used;
-    thull* hulls;                 /* HULL_CAP, the geometry of every hull and box shape */
+    thull* hulls;                 /* HULL_CAP, the geometry of every hull and box shape as
+                                     the world built it (body frame) */
     uint32_t hulls_used;
 } rig;
 
@@ -91,8 +85,6 @@ static VkDeviceSize rig_bytes(const rig* r, int i)
     switch (i) {
     case BUF_COUNTERS: return sizeof(tb_gpu_counters);
     case BUF_BODY_PAIRS: return MAX_SLOTS * sizeof(tb_gpu_uvec4);
-    case BUF_HULL_VECTORS: return HULL_VECTOR_CAP * sizeof(tb_gpu_vec4);
-    case BUF_HULL_TOPOLOGY: return HULL_TOPOLOGY_CAP * sizeof(uint32_t);
     case BUF_PAIRS: return 2 * (VkDeviceSize)r->cap * sizeof(tb_gpu_uvec4);
     default: return (VkDeviceSize)r->cap * sizeof(tb_gpu_manifold);
     }
@@ -102,8 +94,7 @@ static void* rig_host(rig* r, int i, uint32_t parity)
 {
     void* host[BUF_COUNT] = { &r->counters, r->body_pairs, r->pairs,
                               r->manifolds + parity * r->cap,
-                              r->manifolds + (parity ^ 1u) * r->cap, r->hull_vectors,
-                              r->hull_topology };
+                              r->manifolds + (parity ^ 1u) * r->cap };
     return host[i];
 }
 
@@ -126,11 +117,8 @@ static rig* rig_create(uint32_t cap)
     r->body_pairs = calloc(MAX_SLOTS, sizeof *r->body_pairs);
     r->pairs = calloc(2 * (size_t)cap, sizeof *r->pairs);
     r->manifolds = calloc(2 * (size_t)cap, sizeof *r->manifolds);
-    r->hull_vectors = calloc(HULL_VECTOR_CAP, sizeof *r->hull_vectors);
-    r->hull_topology = calloc(HULL_TOPOLOGY_CAP, sizeof *r->hull_topology);
     r->hulls = calloc(HULL_CAP, sizeof *r->hulls);
-    assert_true(r->body_pairs && r->pairs && r->manifolds && r->hull_vectors && r->hull_topology &&
-                r->hulls);
+    assert_true(r->body_pairs && r->pairs && r->manifolds && r->hulls);
     tb_world* w = r->w;
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -162,8 +150,6 @@ static void rig_destroy(rig* r)
     free(r->body_pairs);
     free(r->pairs);
     free(r->manifolds);
-    free(r->hull_vectors);
-    free(r->hull_topology);
     free(r->hulls);
     free(r);
 }
@@ -268,7 +254,8 @@ static void obj_move(rig* r, obj* o, tb_vec3 pos, tb_quat rot)
 }
 
 static void thull_box(thull* h, const double half[3]);
-static const thull* rig_attach_hull(rig* r, tb_shape_id s, const thull* h, int is_hull);
+static tb_quat quat_mul(tb_quat a, tb_quat b);
+static const thull* rig_take_hull(rig* r, tb_shape_id s);
 
 /* size: sphere radius in x; box half extents; plane normal in xyz and offset in `offset`;
  * a hull's geometry is `shape` (its size is the half extents of its bounding box).
@@ -290,13 +277,21 @@ static obj obj_make_hull(rig* r, tb_shape_type type, tb_vec3 size, float offset,
     } else if (type == TB_SHAPE_BOX) {
         o.size[0] = size.x, o.size[1] = size.y, o.size[2] = size.z;
         th_assert_ok(tb_shape_create_box(r->w, &sd, size, &s));
-        thull h;
-        thull_box(&h, o.size);
-        o.hull = rig_attach_hull(r, s, &h, 0);
+        o.hull = rig_take_hull(r, s);
     } else if (type == TB_SHAPE_HULL) {
-        /* Until the world builds hulls: a box shape turned into the given hull. */
-        th_assert_ok(tb_shape_create_box(r->w, &sd, size, &s));
-        o.hull = rig_attach_hull(r, s, shape, 1);
+        /* The hull of the shape's vertices; its body frame is the principal frame, so the
+         * pose asked for (of the vertices' frame) becomes that frame's. */
+        tb_vec3 points[TH_MAXV];
+        for (uint32_t k = 0; k < shape->nv; k++)
+            points[k] = th_v3((float)shape->v[k][0], (float)shape->v[k][1], (float)shape->v[k][2]);
+        th_assert_ok(tb_shape_create_hull(r->w, &sd, points, shape->nv, &s));
+        o.hull = rig_take_hull(r, s);
+        tb_hull_info info;
+        th_assert_ok(tb_shape_get_hull_info(r->w, s, &info));
+        double c[3] = { info.center_of_mass.x, info.center_of_mass.y, info.center_of_mass.z }, rc[3];
+        th_quat_rotate(rot, c, rc);
+        pos = th_v3(pos.x + (float)rc[0], pos.y + (float)rc[1], pos.z + (float)rc[2]);
+        rot = quat_mul(rot, info.principal_axes);
     } else {
         double n = sqrt((double)size.x * size.x + (double)size.y * size.y + (double)size.z * size.z);
         o.plane[0] = size.x / n, o.plane[1] = size.y / n, o.plane[2] = size.z / n;
@@ -575,45 +570,29 @@ static void thull_random(thull* h, th_rng* g)
                th_rng_range(g, 0.1f, 0.6f), g);
 }
 
-/* Appends h to the rig's hull buffers in the GPU layout (layout.h) and gives shape s its
- * location; a hull shape also gets the hull type and its bounding box. */
-static const thull* rig_attach_hull(rig* r, tb_shape_id s, const thull* h, int is_hull)
+/* The hull the world built for shape s (boxes have one too), in double. */
+static const thull* rig_take_hull(rig* r, tb_shape_id s)
 {
-    assert_true(r->hulls_used < HULL_CAP);
-    assert_true(r->vectors_used + h->nv + h->nf <= HULL_VECTOR_CAP);
-    assert_true(r->topology_used + 2 * h->ne + h->nf + h->ni <= HULL_TOPOLOGY_CAP);
-    thull* kept = &r->hulls[r->hulls_used++];
-    *kept = *h;
-    tb_gpu_shape* gpu = &r->w->gpu_shapes[s.index1 - 1];
-    uint32_t v0 = r->vectors_used, e0 = r->topology_used, f0 = e0 + 2 * h->ne;
-    for (uint32_t k = 0; k < h->nv; k++)
-        r->hull_vectors[v0 + k] = (tb_gpu_vec4){ (float)h->v[k][0], (float)h->v[k][1], (float)h->v[k][2], 0 };
-    for (uint32_t f = 0; f < h->nf; f++)
-        r->hull_vectors[v0 + h->nv + f] = (tb_gpu_vec4){ (float)h->plane[f][0], (float)h->plane[f][1],
-                                                         (float)h->plane[f][2], (float)h->plane[f][3] };
-    for (uint32_t e = 0; e < h->ne; e++) {
-        r->hull_topology[e0 + 2 * e] = h->edge[e][0] | h->edge[e][1] << 16;
-        r->hull_topology[e0 + 2 * e + 1] = h->edge[e][2] | h->edge[e][3] << 16;
+    const tb_hull* h = r->w->shapes[s.index1 - 1].hull;
+    assert_non_null(h);
+    assert_true(r->hulls_used < HULL_CAP && h->vertex_count <= TH_MAXV && h->face_count <= TH_MAXF &&
+                h->edge_count <= TH_MAXE && h->index_count <= TH_MAXI);
+    thull* t = &r->hulls[r->hulls_used++];
+    memset(t, 0, sizeof *t);
+    t->nv = h->vertex_count, t->nf = h->face_count, t->ne = h->edge_count, t->ni = h->index_count;
+    for (uint32_t k = 0; k < t->nv; k++)
+        for (int i = 0; i < 3; i++) t->v[k][i] = h->vertices[k][i];
+    for (uint32_t f = 0; f < t->nf; f++) {
+        for (int i = 0; i < 4; i++) t->plane[f][i] = h->planes[f][i];
+        t->first[f] = h->faces[f].first;
+        t->count[f] = h->faces[f].count;
     }
-    for (uint32_t f = 0; f < h->nf; f++)
-        r->hull_topology[f0 + f] = (h->nf + h->first[f]) | h->count[f] << 16;
-    for (uint32_t k = 0; k < h->ni; k++) r->hull_topology[f0 + h->nf + k] = h->idx[k];
-    r->vectors_used += h->nv + h->nf;
-    r->topology_used += 2 * h->ne + h->nf + h->ni;
-    gpu->info.y = h->nv, gpu->info.z = h->nf, gpu->info.w = h->ne;
-    gpu->hull = (tb_gpu_uvec4){ v0, v0 + h->nv, e0, f0 };
-    if (is_hull) {
-        double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-        for (uint32_t k = 0; k < h->nv; k++)
-            for (int i = 0; i < 3; i++) lo[i] = fmin(lo[i], h->v[k][i]), hi[i] = fmax(hi[i], h->v[k][i]);
-        gpu->info.x = TB_GPU_SHAPE_HULL;
-        gpu->aabb_center = (tb_gpu_vec4){ (float)(lo[0] + hi[0]) / 2, (float)(lo[1] + hi[1]) / 2,
-                                          (float)(lo[2] + hi[2]) / 2, 0 };
-        gpu->aabb_half = (tb_gpu_vec4){ (float)(hi[0] - lo[0]) / 2, (float)(hi[1] - lo[1]) / 2,
-                                        (float)(hi[2] - lo[2]) / 2, 0 };
+    for (uint32_t k = 0; k < t->ni; k++) t->idx[k] = h->indices[k];
+    for (uint32_t e = 0; e < t->ne; e++) {
+        t->edge[e][0] = h->edges[e].v0, t->edge[e][1] = h->edges[e].v1;
+        t->edge[e][2] = h->edges[e].left, t->edge[e][3] = h->edges[e].right;
     }
-    r->w->shapes_dirty = 1;
-    return kept;
+    return t;
 }
 
 /* A hull body of the given geometry. */
@@ -1856,21 +1835,24 @@ static void test_hull_plane(void** state)
                             th_quat_axis_angle(th_v3(1, 0, 0), -PI / 2)); /* apex down */
     obj bipo = hull(r, &bip, th_v3(0, 0, 5), tilt);
     double lowest[2] = { INFINITY, INFINITY };
-    for (uint32_t k = 0; k < bip.nv; k++) {
+    for (uint32_t k = 0; k < bipo.hull->nv; k++) {
         double w[3];
-        obj_to_world(&bipo, bip.v[k], w);
+        obj_to_world(&bipo, bipo.hull->v[k], w);
         if (w[1] < lowest[0]) lowest[1] = lowest[0], lowest[0] = w[1];
         else if (w[1] < lowest[1]) lowest[1] = w[1];
     }
     assert_true(lowest[1] - lowest[0] > 0.1);
-    obj_move(r, &bipo, th_v3(0, (float)(-lowest[0] - 0.01), 5), tilt);
+    /* moved (not turned: its body frame is the principal frame) until 1 cm deep */
+    obj_move(r, &bipo, th_v3((float)bipo.pos[0], (float)(bipo.pos[1] - lowest[0] - 0.01),
+                             (float)bipo.pos[2]), bipo.rot);
     double low = INFINITY;
-    for (uint32_t k = 0; k < tri.nv; k++) {
+    for (uint32_t k = 0; k < trio.hull->nv; k++) {
         double w[3];
-        obj_to_world(&trio, tri.v[k], w);
+        obj_to_world(&trio, trio.hull->v[k], w);
         low = fmin(low, w[1]);
     }
-    obj_move(r, &trio, th_v3(-3, (float)(-low - 0.01), 0), lay);
+    obj_move(r, &trio, th_v3((float)trio.pos[0], (float)(trio.pos[1] - low - 0.01),
+                             (float)trio.pos[2]), trio.rot);
     pair_list l = { .n = 0 };
     pair_add(&l, &ground, &flat, "box hull flat");
     pair_add(&l, &ground, &hexo, "hexagonal prism on its cap");
@@ -2087,11 +2069,15 @@ static void test_hull_cached_axis(void** state)
     thull_make(&prism, FRUSTUM, 5, 0.5, 0.4, 0.3, &g);
     const double ridge = 0.5 * sqrt(2.0);
     tb_quat ax = th_quat_axis_angle(th_v3(1, 0, 0), PI / 4), az = th_quat_axis_angle(th_v3(0, 0, 1), PI / 4);
+    /* the hulls as the world built them: their face and edge counts */
+    obj probe_a = hull(r, &cube, th_v3(-50, 0, 0), identity);
+    obj probe_b = hull(r, &prism, th_v3(-60, 0, 0), identity);
+    const thull* ha = probe_a.hull, *hb = probe_b.hull;
     uint32_t codes[256], m = 0;
-    for (uint32_t f = 0; f < 6; f++) codes[m++] = axis_code(1, 0, f);
-    for (uint32_t f = 0; f < prism.nf; f++) codes[m++] = axis_code(2, 0, f);
-    for (uint32_t i = 0; i < 12; i++)
-        for (uint32_t j = 0; j < prism.ne && m < 200; j += 2) codes[m++] = axis_code(3, i, j);
+    for (uint32_t f = 0; f < ha->nf; f++) codes[m++] = axis_code(1, 0, f);
+    for (uint32_t f = 0; f < hb->nf; f++) codes[m++] = axis_code(2, 0, f);
+    for (uint32_t i = 0; i < ha->ne; i++)
+        for (uint32_t j = 0; j < hb->ne && m < 200; j += 2) codes[m++] = axis_code(3, i, j);
     codes[m++] = axis_code(1, 0, 999);
     codes[m++] = axis_code(3, 999, 0);
     codes[m++] = axis_code(2, 0, 77);
