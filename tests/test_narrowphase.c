@@ -42,6 +42,23 @@ enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLD
 static const uint32_t rig_binding[BUF_COUNT] = { TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS,
                                                  TB_BIND_PAIRS, TB_BIND_MANIFOLDS,
                                                  TB_BIND_PREV_MANIFOLDS };
+/* Most hull and box shapes a rig keeps the geometry of, in double. */
+#define HULL_CAP 1024u
+
+/* A convex hull in double, body frame, with the topology conventions of src/geom/hull.h:
+ * faces counter-clockwise from outside, edges (v0, v1, left, right). */
+#define TH_MAXV 72
+#define TH_MAXF 72
+#define TH_MAXE 144
+#define TH_MAXI 320
+typedef struct thull {
+    uint32_t nv, nf, ne, ni;
+    double v[TH_MAXV][3];
+    double plane[TH_MAXF][4];
+    uint32_t first[TH_MAXF], count[TH_MAXF];
+    uint32_t idx[TH_MAXI];
+    uint32_t edge[TH_MAXE][4];
+} thull;
 
 typedef struct rig {
     tb_world* w;
@@ -58,6 +75,9 @@ typedef struct rig {
                                      binds its half's as this step's, the other's as last
                                      step's */
     uint32_t made;                /* shapes made, to vary their materials */
+    thull* hulls;                 /* HULL_CAP, the geometry of every hull and box shape as
+                                     the world built it (body frame) */
+    uint32_t hulls_used;
 } rig;
 
 static VkDeviceSize rig_bytes(const rig* r, int i)
@@ -97,7 +117,8 @@ static rig* rig_create(uint32_t cap)
     r->body_pairs = calloc(MAX_SLOTS, sizeof *r->body_pairs);
     r->pairs = calloc(2 * (size_t)cap, sizeof *r->pairs);
     r->manifolds = calloc(2 * (size_t)cap, sizeof *r->manifolds);
-    assert_true(r->body_pairs && r->pairs && r->manifolds);
+    r->hulls = calloc(HULL_CAP, sizeof *r->hulls);
+    assert_true(r->body_pairs && r->pairs && r->manifolds && r->hulls);
     tb_world* w = r->w;
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -129,6 +150,7 @@ static void rig_destroy(rig* r)
     free(r->body_pairs);
     free(r->pairs);
     free(r->manifolds);
+    free(r->hulls);
     free(r);
 }
 
@@ -208,6 +230,7 @@ typedef struct obj {
     tb_shape_type type;
     double size[3];     /* sphere: radius in [0]; box: half extents */
     double plane[4];    /* plane: unit normal and offset, body frame */
+    const thull* hull;  /* box and hull: the hull data the GPU has, body frame */
     double pos[3];      /* pose as the GPU has it */
     tb_quat rot;
     float friction, restitution;
@@ -230,10 +253,15 @@ static void obj_move(rig* r, obj* o, tb_vec3 pos, tb_quat rot)
     obj_read_pose(r, o);
 }
 
-/* size: sphere radius in x; box half extents; plane normal in xyz and offset in `offset`.
+static void thull_box(thull* h, const double half[3]);
+static tb_quat quat_mul(tb_quat a, tb_quat b);
+static const thull* rig_take_hull(rig* r, tb_shape_id s);
+
+/* size: sphere radius in x; box half extents; plane normal in xyz and offset in `offset`;
+ * a hull's geometry is `shape` (its size is the half extents of its bounding box).
  * Materials differ from shape to shape so the combination rules are checked everywhere. */
-static obj obj_make(rig* r, tb_shape_type type, tb_vec3 size, float offset, tb_vec3 pos,
-                    tb_quat rot)
+static obj obj_make_hull(rig* r, tb_shape_type type, tb_vec3 size, float offset, tb_vec3 pos,
+                         tb_quat rot, const thull* shape)
 {
     obj o;
     memset(&o, 0, sizeof o);
@@ -249,6 +277,21 @@ static obj obj_make(rig* r, tb_shape_type type, tb_vec3 size, float offset, tb_v
     } else if (type == TB_SHAPE_BOX) {
         o.size[0] = size.x, o.size[1] = size.y, o.size[2] = size.z;
         th_assert_ok(tb_shape_create_box(r->w, &sd, size, &s));
+        o.hull = rig_take_hull(r, s);
+    } else if (type == TB_SHAPE_HULL) {
+        /* The hull of the shape's vertices; its body frame is the principal frame, so the
+         * pose asked for (of the vertices' frame) becomes that frame's. */
+        tb_vec3 points[TH_MAXV];
+        for (uint32_t k = 0; k < shape->nv; k++)
+            points[k] = th_v3((float)shape->v[k][0], (float)shape->v[k][1], (float)shape->v[k][2]);
+        th_assert_ok(tb_shape_create_hull(r->w, &sd, points, shape->nv, &s));
+        o.hull = rig_take_hull(r, s);
+        tb_hull_info info;
+        th_assert_ok(tb_shape_get_hull_info(r->w, s, &info));
+        double c[3] = { info.center_of_mass.x, info.center_of_mass.y, info.center_of_mass.z }, rc[3];
+        th_quat_rotate(rot, c, rc);
+        pos = th_v3(pos.x + (float)rc[0], pos.y + (float)rc[1], pos.z + (float)rc[2]);
+        rot = quat_mul(rot, info.principal_axes);
     } else {
         double n = sqrt((double)size.x * size.x + (double)size.y * size.y + (double)size.z * size.z);
         o.plane[0] = size.x / n, o.plane[1] = size.y / n, o.plane[2] = size.z / n;
@@ -263,6 +306,12 @@ static obj obj_make(rig* r, tb_shape_type type, tb_vec3 size, float offset, tb_v
     o.restitution = sd.restitution;
     obj_read_pose(r, &o);
     return o;
+}
+
+static obj obj_make(rig* r, tb_shape_type type, tb_vec3 size, float offset, tb_vec3 pos,
+                    tb_quat rot)
+{
+    return obj_make_hull(r, type, size, offset, pos, rot, NULL);
 }
 
 static obj sphere(rig* r, float radius, tb_vec3 pos)
@@ -332,6 +381,315 @@ static void plane_world(const obj* o, double n[3], double* offset)
     *offset = o->plane[3] + dot3(n, o->pos);
 }
 
+/* ---- hulls in double: construction, upload, distances ------------------------------------ */
+
+static void sub3(const double a[3], const double b[3], double out[3])
+{
+    for (int i = 0; i < 3; i++) out[i] = a[i] - b[i];
+}
+
+static void normalize3(double v[3])
+{
+    double len = sqrt(dot3(v, v));
+    for (int i = 0; i < 3; i++) v[i] /= len;
+}
+
+static uint32_t thull_vertex(thull* h, double x, double y, double z)
+{
+    assert_true(h->nv < TH_MAXV);
+    h->v[h->nv][0] = x, h->v[h->nv][1] = y, h->v[h->nv][2] = z;
+    return h->nv++;
+}
+
+/* A face from its vertices in any order: ordered counter-clockwise seen from outside (the
+ * hull's vertex centroid, at the origin once thull_finish ran, is inside). */
+static void thull_face(thull* h, const uint32_t* vs, uint32_t n)
+{
+    assert_true(h->nf < TH_MAXF && h->ni + n <= TH_MAXI && n >= 3);
+    double c[3] = { 0, 0, 0 }, centre[3] = { 0, 0, 0 };
+    for (uint32_t k = 0; k < n; k++)
+        for (int i = 0; i < 3; i++) c[i] += h->v[vs[k]][i] / n;
+    for (uint32_t k = 0; k < h->nv; k++)
+        for (int i = 0; i < 3; i++) centre[i] += h->v[k][i] / h->nv;
+    /* the normal: the largest cross product of two corners about the centroid, outward */
+    double e1[3], e2[3], x[3], nrm[3] = { 0, 0, 0 }, out[3];
+    sub3(h->v[vs[0]], c, e1);
+    for (uint32_t k = 1; k < n; k++) {
+        sub3(h->v[vs[k]], c, e2);
+        cross3(e1, e2, x);
+        if (dot3(x, x) > dot3(nrm, nrm)) memcpy(nrm, x, sizeof x);
+    }
+    sub3(c, centre, out);
+    if (dot3(nrm, out) < 0) for (int i = 0; i < 3; i++) nrm[i] = -nrm[i];
+    normalize3(nrm);
+    double t1[3], t2[3];
+    sub3(h->v[vs[0]], c, t1);
+    for (int i = 0; i < 3; i++) t1[i] -= nrm[i] * dot3(t1, nrm);
+    normalize3(t1);
+    cross3(nrm, t1, t2);
+    uint32_t order[TH_MAXV];
+    double angle[TH_MAXV];
+    for (uint32_t k = 0; k < n; k++) {
+        double d[3];
+        sub3(h->v[vs[k]], c, d);
+        angle[k] = atan2(dot3(d, t2), dot3(d, t1));
+        order[k] = vs[k];
+        for (uint32_t j = k; j > 0 && angle[j - 1] > angle[j]; j--) {
+            double ta = angle[j]; angle[j] = angle[j - 1]; angle[j - 1] = ta;
+            uint32_t to = order[j]; order[j] = order[j - 1]; order[j - 1] = to;
+        }
+    }
+    h->first[h->nf] = h->ni;
+    h->count[h->nf] = n;
+    for (uint32_t k = 0; k < n; k++) h->idx[h->ni++] = order[k];
+    h->nf++;
+}
+
+/* Face planes (Newell normals, mean offsets) and edges with their left and right faces. */
+static void thull_finish(thull* h)
+{
+    h->ne = 0;
+    for (uint32_t f = 0; f < h->nf; f++) {
+        double n[3] = { 0, 0, 0 }, d = 0;
+        uint32_t cnt = h->count[f];
+        for (uint32_t k = 0; k < cnt; k++) {
+            const double* a = h->v[h->idx[h->first[f] + k]];
+            const double* b = h->v[h->idx[h->first[f] + (k + 1) % cnt]];
+            n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+            n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+            n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+        }
+        normalize3(n);
+        for (uint32_t k = 0; k < cnt; k++) d += dot3(n, h->v[h->idx[h->first[f] + k]]) / cnt;
+        memcpy(h->plane[f], n, sizeof n);
+        h->plane[f][3] = d;
+        for (uint32_t k = 0; k < cnt; k++) {
+            uint32_t a = h->idx[h->first[f] + k], b = h->idx[h->first[f] + (k + 1) % cnt];
+            uint32_t e = 0;
+            while (e < h->ne && !(h->edge[e][0] == b && h->edge[e][1] == a)) e++;
+            if (e < h->ne) { h->edge[e][3] = f; continue; }
+            assert_true(h->ne < TH_MAXE);
+            h->edge[h->ne][0] = a, h->edge[h->ne][1] = b, h->edge[h->ne][2] = f;
+            h->edge[h->ne][3] = ~0u;
+            h->ne++;
+        }
+    }
+    for (uint32_t e = 0; e < h->ne; e++) assert_true(h->edge[e][3] != ~0u); /* closed */
+}
+
+static void thull_box(thull* h, const double half[3])
+{
+    memset(h, 0, sizeof *h);
+    for (int c = 0; c < 8; c++)
+        thull_vertex(h, (c & 1) ? half[0] : -half[0], (c & 2) ? half[1] : -half[1],
+                     (c & 4) ? half[2] : -half[2]);
+    for (int axis = 0; axis < 3; axis++)
+        for (int side = 0; side < 2; side++) {
+            uint32_t vs[4], n = 0;
+            for (uint32_t c = 0; c < 8; c++)
+                if (((c >> axis) & 1u) == (uint32_t)side) vs[n++] = c;
+            thull_face(h, vs, 4);
+        }
+    thull_finish(h);
+}
+
+/* Moves the vertices so their centroid is the origin (inside: the body's centre). */
+static void thull_centre(thull* h)
+{
+    double c[3] = { 0, 0, 0 };
+    for (uint32_t k = 0; k < h->nv; k++)
+        for (int i = 0; i < 3; i++) c[i] += h->v[k][i] / h->nv;
+    for (uint32_t k = 0; k < h->nv; k++)
+        for (int i = 0; i < 3; i++) h->v[k][i] -= c[i];
+}
+
+/* n corners at increasing angles on an ellipse (so the polygon is convex) at height z,
+ * scaled by s and moved by (dx, dy). */
+static void ring(thull* h, const double* angle, uint32_t n, double rx, double ry, double s,
+                 double dx, double dy, double z)
+{
+    for (uint32_t k = 0; k < n; k++)
+        thull_vertex(h, s * rx * cos(angle[k]) + dx, s * ry * sin(angle[k]) + dy, z);
+}
+
+static void random_angles(th_rng* g, double* angle, uint32_t n)
+{
+    /* evenly spread, each jittered by up to a third of the spacing: never coincident */
+    double phase = th_rng_range(g, 0, 6.2831853f);
+    for (uint32_t k = 0; k < n; k++)
+        angle[k] = phase + 2 * PI * (k + th_rng_range(g, -0.33f, 0.33f)) / n;
+}
+
+typedef enum hull_family { PRISM, FRUSTUM, BIPYRAMID, FAMILY_BOX, FAMILY_COUNT } hull_family;
+
+/* A convex polyhedron: an n-gon prism or frustum (quads and two n-gons), a bipyramid
+ * (2n triangles) or a box, n corners on the ellipse of radii rx, ry, height 2 hz. */
+static void thull_make(thull* h, hull_family family, uint32_t n, double rx, double ry, double hz,
+                       th_rng* g)
+{
+    memset(h, 0, sizeof *h);
+    if (family == FAMILY_BOX) {
+        thull_box(h, (double[3]){ rx, ry, hz });
+        return;
+    }
+    double angle[TH_MAXV];
+    random_angles(g, angle, n);
+    uint32_t vs[TH_MAXV];
+    if (family == BIPYRAMID) {
+        ring(h, angle, n, rx, ry, 1, 0, 0, 0);
+        uint32_t top = thull_vertex(h, 0.1 * rx, 0, hz), bottom = thull_vertex(h, 0, -0.1 * ry, -hz);
+        for (uint32_t k = 0; k < n; k++) {
+            uint32_t tri[3] = { k, (k + 1) % n, top };
+            thull_face(h, tri, 3);
+            tri[2] = bottom;
+            thull_face(h, tri, 3);
+        }
+    } else {
+        double s = family == FRUSTUM ? 0.6 : 1, d = family == FRUSTUM ? 0.1 : 0;
+        ring(h, angle, n, rx, ry, 1, 0, 0, -hz);
+        ring(h, angle, n, rx, ry, s, d * rx, -d * ry, hz);
+        for (uint32_t k = 0; k < n; k++) vs[k] = k;
+        thull_face(h, vs, n);
+        for (uint32_t k = 0; k < n; k++) vs[k] = n + k;
+        thull_face(h, vs, n);
+        for (uint32_t k = 0; k < n; k++) {
+            uint32_t quad[4] = { k, (k + 1) % n, n + (k + 1) % n, n + k };
+            thull_face(h, quad, 4);
+        }
+    }
+    thull_centre(h);
+    /* faces were ordered around the old centroid, still inside: only the planes move */
+    thull_finish(h);
+}
+
+static void thull_random(thull* h, th_rng* g)
+{
+    hull_family family = (hull_family)(th_rng_u32(g) % FAMILY_COUNT);
+    uint32_t n = 3 + th_rng_u32(g) % 6;
+    thull_make(h, family, n, th_rng_range(g, 0.15f, 0.8f), th_rng_range(g, 0.15f, 0.8f),
+               th_rng_range(g, 0.1f, 0.6f), g);
+}
+
+/* The hull the world built for shape s (boxes have one too), in double. */
+static const thull* rig_take_hull(rig* r, tb_shape_id s)
+{
+    const tb_hull* h = r->w->shapes[s.index1 - 1].hull;
+    assert_non_null(h);
+    assert_true(r->hulls_used < HULL_CAP && h->vertex_count <= TH_MAXV && h->face_count <= TH_MAXF &&
+                h->edge_count <= TH_MAXE && h->index_count <= TH_MAXI);
+    thull* t = &r->hulls[r->hulls_used++];
+    memset(t, 0, sizeof *t);
+    t->nv = h->vertex_count, t->nf = h->face_count, t->ne = h->edge_count, t->ni = h->index_count;
+    for (uint32_t k = 0; k < t->nv; k++)
+        for (int i = 0; i < 3; i++) t->v[k][i] = h->vertices[k][i];
+    for (uint32_t f = 0; f < t->nf; f++) {
+        for (int i = 0; i < 4; i++) t->plane[f][i] = h->planes[f][i];
+        t->first[f] = h->faces[f].first;
+        t->count[f] = h->faces[f].count;
+    }
+    for (uint32_t k = 0; k < t->ni; k++) t->idx[k] = h->indices[k];
+    for (uint32_t e = 0; e < t->ne; e++) {
+        t->edge[e][0] = h->edges[e].v0, t->edge[e][1] = h->edges[e].v1;
+        t->edge[e][2] = h->edges[e].left, t->edge[e][3] = h->edges[e].right;
+    }
+    return t;
+}
+
+/* A hull body of the given geometry. */
+static obj hull(rig* r, const thull* h, tb_vec3 pos, tb_quat rot)
+{
+    float half = 0;
+    for (uint32_t k = 0; k < h->nv; k++)
+        for (int i = 0; i < 3; i++) half = fmaxf(half, (float)fabs(h->v[k][i]));
+    return obj_make_hull(r, TB_SHAPE_HULL, th_v3(half, half, half), 0, pos, rot, h);
+}
+
+/* Signed distance from a point (body frame) to the hull's surface: inside, the largest
+ * face plane distance; outside, the distance to the nearest face or edge point. */
+static double thull_sdf(const thull* h, const double p[3])
+{
+    double inside = -INFINITY;
+    for (uint32_t f = 0; f < h->nf; f++) inside = fmax(inside, dot3(h->plane[f], p) - h->plane[f][3]);
+    if (inside <= 0) return inside;
+    double best = INFINITY;
+    for (uint32_t f = 0; f < h->nf; f++) {
+        double d = dot3(h->plane[f], p) - h->plane[f][3];
+        if (d <= 0) continue;
+        double q[3];
+        for (int i = 0; i < 3; i++) q[i] = p[i] - h->plane[f][i] * d;
+        int in = 1;
+        for (uint32_t k = 0; k < h->count[f] && in; k++) {
+            const double* a = h->v[h->idx[h->first[f] + k]];
+            const double* b = h->v[h->idx[h->first[f] + (k + 1) % h->count[f]]];
+            double e[3], x[3], s[3];
+            sub3(b, a, e);
+            cross3(e, h->plane[f], s);
+            sub3(q, a, x);
+            in = dot3(s, x) <= 0;
+        }
+        if (in) best = fmin(best, d);
+    }
+    for (uint32_t e = 0; e < h->ne; e++) {
+        const double* a = h->v[h->edge[e][0]];
+        double d[3], x[3], q[3];
+        sub3(h->v[h->edge[e][1]], a, d);
+        sub3(p, a, x);
+        double t = fmin(1, fmax(0, dot3(x, d) / dot3(d, d)));
+        for (int i = 0; i < 3; i++) q[i] = a[i] + d[i] * t;
+        best = fmin(best, dist3(p, q));
+    }
+    return best;
+}
+
+static void hull_world_vertices(const obj* o, double out[][3])
+{
+    for (uint32_t k = 0; k < o->hull->nv; k++) obj_to_world(o, o->hull->v[k], out[k]);
+}
+
+/* Separation of two vertex sets along unit l, either way round. */
+static double sets_apart(const double (*va)[3], uint32_t na, const double (*vb)[3], uint32_t nb,
+                         const double l[3])
+{
+    double lo_a = INFINITY, hi_a = -INFINITY, lo_b = INFINITY, hi_b = -INFINITY;
+    for (uint32_t k = 0; k < na; k++) lo_a = fmin(lo_a, dot3(l, va[k])), hi_a = fmax(hi_a, dot3(l, va[k]));
+    for (uint32_t k = 0; k < nb; k++) lo_b = fmin(lo_b, dot3(l, vb[k])), hi_b = fmax(hi_b, dot3(l, vb[k]));
+    return fmax(lo_b - hi_a, lo_a - hi_b);
+}
+
+/* The separating axis test over every face normal and every edge pair, without any
+ * pruning: the distance apart along the best axis, or minus the smallest penetration. */
+static double sat_hull_hull(const obj* a, const obj* b)
+{
+    double va[TH_MAXV][3], vb[TH_MAXV][3], best = -INFINITY, l[3];
+    hull_world_vertices(a, va);
+    hull_world_vertices(b, vb);
+    const thull* h[2] = { a->hull, b->hull };
+    const obj* o[2] = { a, b };
+    for (int s = 0; s < 2; s++)
+        for (uint32_t f = 0; f < h[s]->nf; f++) {
+            th_quat_rotate(o[s]->rot, h[s]->plane[f], l);
+            best = fmax(best, sets_apart((const double (*)[3])va, a->hull->nv,
+                                         (const double (*)[3])vb, b->hull->nv, l));
+        }
+    double (*ea)[3] = malloc(sizeof(double[3]) * a->hull->ne);
+    double (*eb)[3] = malloc(sizeof(double[3]) * b->hull->ne);
+    assert_true(ea && eb);
+    for (uint32_t e = 0; e < a->hull->ne; e++) sub3(va[a->hull->edge[e][1]], va[a->hull->edge[e][0]], ea[e]);
+    for (uint32_t e = 0; e < b->hull->ne; e++) sub3(vb[b->hull->edge[e][1]], vb[b->hull->edge[e][0]], eb[e]);
+    for (uint32_t i = 0; i < a->hull->ne; i++)
+        for (uint32_t j = 0; j < b->hull->ne; j++) {
+            cross3(ea[i], eb[j], l);
+            double len = sqrt(dot3(l, l));
+            if (len < 1e-6 * sqrt(dot3(ea[i], ea[i]) * dot3(eb[j], eb[j]))) continue;
+            for (int k = 0; k < 3; k++) l[k] /= len;
+            best = fmax(best, sets_apart((const double (*)[3])va, a->hull->nv,
+                                         (const double (*)[3])vb, b->hull->nv, l));
+        }
+    free(ea);
+    free(eb);
+    return best;
+}
+
 static void box_corner(const obj* o, int c, double out[3])
 {
     double local[3] = { (c & 1) ? o->size[0] : -o->size[0], (c & 2) ? o->size[1] : -o->size[1],
@@ -350,6 +708,7 @@ static double sdf(const obj* o, const double p[3])
     }
     double l[3], outside = 0, inside = -INFINITY;
     obj_to_local(o, p, l);
+    if (o->type == TB_SHAPE_HULL) return thull_sdf(o->hull, l);
     for (int i = 0; i < 3; i++) {
         double q = fabs(l[i]) - o->size[i];
         outside += q > 0 ? q * q : 0;
@@ -395,10 +754,19 @@ static double separation(const obj* a, const obj* b)
 {
     if (a->type > b->type) { const obj* t = a; a = b; b = t; }
     if (a->type == TB_SHAPE_SPHERE) {
-        if (b->type == TB_SHAPE_PLANE || b->type == TB_SHAPE_BOX) return sdf(b, a->pos) - a->size[0];
+        if (b->type != TB_SHAPE_SPHERE) return sdf(b, a->pos) - a->size[0];
         return dist3(a->pos, b->pos) - a->size[0] - b->size[0];
     }
     if (a->type == TB_SHAPE_BOX && b->type == TB_SHAPE_BOX) return sat_box_box(a, b);
+    if (b->type == TB_SHAPE_HULL && a->type == TB_SHAPE_PLANE) {
+        double lowest = INFINITY, v[3];
+        for (uint32_t k = 0; k < b->hull->nv; k++) {
+            obj_to_world(b, b->hull->v[k], v);
+            lowest = fmin(lowest, sdf(a, v));
+        }
+        return lowest;
+    }
+    if (b->type == TB_SHAPE_HULL) return sat_hull_hull(a, b);
     if (a->type == TB_SHAPE_BOX) {
         double lowest = INFINITY, corner[3];
         for (int c = 0; c < 8; c++) {
@@ -868,7 +1236,8 @@ static void test_separated(void** state)
 
 /* ---- random configurations ---------------------------------------------------------------- */
 
-typedef enum kind { BOX_BOX, BOX_STACK, SPHERE_BOX, BOX_PLANE, SPHERE_SPHERE, SPHERE_PLANE, KIND_COUNT } kind;
+typedef enum kind { BOX_BOX, BOX_STACK, SPHERE_BOX, BOX_PLANE, SPHERE_SPHERE, SPHERE_PLANE,
+                    HULL_HULL, HULL_STACK, BOX_HULL, SPHERE_HULL, PLANE_HULL, KIND_COUNT } kind;
 
 /* Moves b along `dir` from a's centre (or a plane's origin) until separation(a, b) equals
  * target, by bisection: the separation only grows along the ray. */
@@ -906,9 +1275,15 @@ static void random_dir(th_rng* g, double out[3])
 
 /* A pair of kind k from seed: a at a random pose, b at a random rotation, placed along a
  * random direction at a random separation (a quarter of them beyond the margin). */
+static void random_hull_pair(rig* r, kind k, th_rng* g, obj* a, obj* b, double* target);
+
 static void random_pair(rig* r, kind k, uint64_t seed, obj* a, obj* b, double* target)
 {
     th_rng g = th_rng_seed(seed);
+    if (k >= HULL_HULL) {
+        random_hull_pair(r, k, &g, a, b, target);
+        return;
+    }
     tb_vec3 pa = th_v3(th_rng_range(&g, -2, 2), th_rng_range(&g, -2, 2), th_rng_range(&g, -2, 2));
     tb_vec3 ha = th_v3(th_rng_range(&g, 0.1f, 1), th_rng_range(&g, 0.1f, 1), th_rng_range(&g, 0.1f, 1));
     tb_vec3 hb = th_v3(th_rng_range(&g, 0.1f, 1), th_rng_range(&g, 0.1f, 1), th_rng_range(&g, 0.1f, 1));
@@ -954,7 +1329,9 @@ static void random_pair(rig* r, kind k, uint64_t seed, obj* a, obj* b, double* t
 static void check_random(kind k, uint32_t n, uint64_t seed)
 {
     static const char* names[KIND_COUNT] = { "box-box", "box on box", "sphere-box", "box-plane",
-                                             "sphere-sphere", "sphere-plane" };
+                                             "sphere-sphere", "sphere-plane", "hull-hull",
+                                             "hull on hull", "box-hull", "sphere-hull",
+                                             "plane-hull" };
     rig* r = rig_create(2 * n);
     obj* a = calloc(n, sizeof *a);
     obj* b = calloc(n, sizeof *b);
@@ -1225,6 +1602,579 @@ static void test_abandoned_step_and_range(void** state)
     rig_destroy(r);
 }
 
+/* ---- hulls -------------------------------------------------------------------------------- */
+
+/* The rotation taking unit u onto unit v. */
+static tb_quat quat_between(const double u[3], const double v[3])
+{
+    double c[3], d = dot3(u, v);
+    cross3(u, v, c);
+    if (d < -0.999999) { /* opposite: half a turn about any perpendicular axis */
+        double x[3] = { 1, 0, 0 };
+        if (fabs(u[0]) > 0.9) x[0] = 0, x[1] = 1;
+        cross3(u, x, c);
+        normalize3(c);
+        return th_q((float)c[0], (float)c[1], (float)c[2], 0);
+    }
+    double w = 1 + d, len = sqrt(w * w + dot3(c, c));
+    return th_q((float)(c[0] / len), (float)(c[1] / len), (float)(c[2] / len), (float)(w / len));
+}
+
+static void random_hull_pair(rig* r, kind k, th_rng* g, obj* a, obj* b, double* target)
+{
+    tb_vec3 pa = th_v3(th_rng_range(g, -2, 2), th_rng_range(g, -2, 2), th_rng_range(g, -2, 2));
+    tb_quat qa = th_rng_quat(g), qb = th_rng_quat(g);
+    *target = th_rng_u32(g) % 4 == 0 ? th_rng_range(g, MARGIN + 0.005f, 0.3f)
+                                     : th_rng_range(g, -0.04f, 0.015f);
+    double dir[3];
+    random_dir(g, dir);
+    thull ha, hb;
+    thull_random(&ha, g);
+    thull_random(&hb, g);
+    if (k == PLANE_HULL) {
+        double offset;
+        *a = plane(r, th_v3((float)dir[0], (float)dir[1], (float)dir[2]), th_rng_range(g, -0.5f, 0.5f), pa, qa);
+        plane_world(a, dir, &offset);
+    } else if (k == SPHERE_HULL) {
+        *a = sphere(r, th_rng_range(g, 0.1f, 0.8f), pa);
+    } else if (k == BOX_HULL) {
+        *a = box(r, th_v3(th_rng_range(g, 0.1f, 1), th_rng_range(g, 0.1f, 1), th_rng_range(g, 0.1f, 1)), pa, qa);
+    } else {
+        *a = hull(r, &ha, pa, qa);
+    }
+    if (k == HULL_STACK) {
+        /* a face of b turned onto a face of a, spun about its normal, tilted by up to 3
+         * degrees: face on face, often overhanging, many clip points. */
+        double n[3], nb[3];
+        th_quat_rotate(a->rot, a->hull->plane[th_rng_u32(g) % a->hull->nf], n);
+        memcpy(nb, hb.plane[th_rng_u32(g) % hb.nf], sizeof nb);
+        double down[3] = { -n[0], -n[1], -n[2] };
+        tb_quat align = quat_between(nb, down);
+        tb_quat spin = th_quat_axis_angle(th_v3((float)n[0], (float)n[1], (float)n[2]),
+                                          th_rng_range(g, 0, 6.2831853f));
+        tb_quat tilt = th_quat_axis_angle(th_v3((float)dir[0], (float)dir[1], (float)dir[2]),
+                                          th_rng_range(g, 0, 0.05f));
+        qb = quat_mul(tilt, quat_mul(spin, align));
+        double lateral[3];
+        random_dir(g, lateral);
+        for (int i = 0; i < 3; i++) dir[i] = n[i] + 0.4 * lateral[i];
+        normalize3(dir);
+    }
+    *b = hull(r, &hb, pa, qb);
+    place_at(b, a, dir, *target);
+    obj_move(r, b, th_v3((float)b->pos[0], (float)b->pos[1], (float)b->pos[2]), b->rot);
+    *target = separation(a, b);
+}
+
+static void test_random_hulls(void** state)
+{
+    (void)state;
+    check_random(HULL_HULL, 64, 11000);
+    check_random(HULL_STACK, 64, 12000);
+    check_random(BOX_HULL, 64, 13000);
+}
+
+static void test_random_hull_sphere_plane(void** state)
+{
+    (void)state;
+    check_random(SPHERE_HULL, 64, 14000);
+    check_random(PLANE_HULL, 64, 15000);
+}
+
+/* A regular n-gon prism, circumradius rad, half height hz, its caps facing +-z. */
+static void regular_prism(thull* h, uint32_t n, double rad, double hz)
+{
+    memset(h, 0, sizeof *h);
+    double angle[TH_MAXV];
+    for (uint32_t k = 0; k < n; k++) angle[k] = 2 * PI * k / n;
+    ring(h, angle, n, rad, rad, 1, 0, 0, -hz);
+    ring(h, angle, n, rad, rad, 1, 0, 0, hz);
+    uint32_t vs[TH_MAXV];
+    for (uint32_t k = 0; k < n; k++) vs[k] = k;
+    thull_face(h, vs, n);
+    for (uint32_t k = 0; k < n; k++) vs[k] = n + k;
+    thull_face(h, vs, n);
+    for (uint32_t k = 0; k < n; k++) {
+        uint32_t quad[4] = { k, (k + 1) % n, n + (k + 1) % n, n + k };
+        thull_face(h, quad, 4);
+    }
+    thull_finish(h);
+}
+
+static uint32_t clip_type(uint32_t key)
+{
+    return (key >> 10) & 3u;
+}
+
+/* Hulls resting face down on hulls: exactly four points at the incident corners. */
+static void test_hull_on_hull(void** state)
+{
+    (void)state;
+    rig* r = rig_create(32);
+    thull ground_h, cube, wide_h, flat_hex, big_prism;
+    thull_box(&ground_h, (double[3]){ 2, 0.5, 2 });
+    thull_box(&cube, (double[3]){ 0.5, 0.5, 0.5 });
+    thull_box(&wide_h, (double[3]){ 0.5, 0.5, 0.5 });
+    regular_prism(&flat_hex, 6, 0.4, 0.2);
+    regular_prism(&big_prism, 32, 0.6, 0.3); /* caps of 32 corners: the clipper's limit */
+    tb_quat turn = th_quat_axis_angle(th_v3(0, 1, 0), 0.3);
+    tb_quat caps_up = th_quat_axis_angle(th_v3(1, 0, 0), PI / 2); /* caps facing -y and +y */
+    obj ground = hull(r, &ground_h, th_v3(0, 0, 0), identity);
+    obj small = hull(r, &cube, th_v3(0.3f, 0.99f, -0.2f), turn);
+    obj base = hull(r, &cube, th_v3(10, 0, 0), identity);
+    obj equal = hull(r, &wide_h, th_v3(10, 0.99f, 0), identity);
+    obj ground2 = hull(r, &ground_h, th_v3(0, 0, 10), identity);
+    obj hex = hull(r, &flat_hex, th_v3(0.2f, 0.69f, 10), quat_mul(turn, caps_up));
+    obj ground3 = hull(r, &ground_h, th_v3(10, 0, 10), identity);
+    obj disc = hull(r, &big_prism, th_v3(10.1f, 0.79f, 10), caps_up);
+    obj block = box(r, th_v3(0.5f, 0.5f, 0.5f), th_v3(-10, 0.99f, 0), turn); /* a box on a hull */
+    obj ground4 = hull(r, &ground_h, th_v3(-10, 0, 0), identity);
+    obj disc2 = hull(r, &big_prism, th_v3(20, 0, 0), caps_up);              /* cap on cap */
+    obj disc3 = hull(r, &big_prism, th_v3(20.05f, 0.59f, 0.1f), quat_mul(turn, caps_up));
+    pair_list l = { .n = 0 };
+    pair_add(&l, &ground, &small, "cube turned on a slab");
+    pair_add(&l, &base, &equal, "equal cubes stacked");
+    pair_add(&l, &ground2, &hex, "hexagonal prism on a slab");
+    pair_add(&l, &ground3, &disc, "32-gon prism on a slab");
+    pair_add(&l, &ground4, &block, "box on a hull slab");
+    pair_add(&l, &disc2, &disc3, "32-gon caps, turned");
+    run_pairs(r, &l);
+
+    double corners[8];
+    for (int c = 0; c < 4; c++) {
+        double local[3] = { (c & 1) ? 0.5 : -0.5, -0.5, (c & 2) ? 0.5 : -0.5 }, world[3];
+        obj_to_world(&small, local, world);
+        corners[2 * c] = world[0], corners[2 * c + 1] = world[2];
+    }
+    expect_top_points(rig_manifold(r, 0, 0), corners, 4, 0.5, -0.01, "cube on slab");
+    expect_normal(rig_manifold(r, 0, 0), 0, 1, 0, "cube on slab");
+    for (int c = 0; c < 4; c++) {
+        double local[3] = { (c & 1) ? 0.5 : -0.5, -0.5, (c & 2) ? 0.5 : -0.5 }, world[3];
+        obj_to_world(&block, local, world);
+        corners[2 * c] = world[0], corners[2 * c + 1] = world[2];
+    }
+    expect_top_points(rig_manifold(r, 0, 4), corners, 4, 0.5, -0.01, "box on hull slab");
+    static const double equal_xz[8] = { 9.5, -0.5, 10.5, -0.5, 9.5, 0.5, 10.5, 0.5 };
+    const tb_gpu_manifold* m = rig_manifold(r, 0, 1);
+    expect_top_points(m, equal_xz, 4, 0.5, -0.01, "equal cubes");
+    for (uint32_t k = 0; k < 4; k++) /* corners meet within rounding: incident corners win */
+        if (clip_type(feature(m, k)) != 0)
+            fail_msg("equal cubes: point %u has clip feature %#x", k, feature(m, k) & 0xfffu);
+    for (uint32_t i = 2; i < 4; i++) {
+        m = rig_manifold(r, 0, i);
+        expect_count(m, 4, l.what[i]);
+        expect_normal(m, 0, 1, 0, l.what[i]);
+        for (uint32_t k = 0; k < 4; k++) {
+            th_assert_near(m->point[k].w, -0.01, EXACT_TOL, 0);
+            if (clip_type(feature(m, k)) != 0) fail_msg("%s: point %u is no incident corner", l.what[i], k);
+        }
+    }
+    /* Two 32-gons: a clipped polygon of up to 64 corners, reduced to the 4 spanning most. */
+    m = rig_manifold(r, 0, 5);
+    expect_count(m, 4, "32-gon caps");
+    for (uint32_t k = 0; k < 4; k++) th_assert_near(m->point[k].w, -0.01, EXACT_TOL, 0);
+    rig_destroy(r);
+}
+
+/* Two cube hulls turned into crossed ridges: one edge-edge point. */
+static void test_hull_crossed_edges(void** state)
+{
+    (void)state;
+    rig* r = rig_create(16);
+    const double ridge = 0.5 * sqrt(2.0);
+    thull cube;
+    thull_box(&cube, (double[3]){ 0.5, 0.5, 0.5 });
+    tb_quat ax = th_quat_axis_angle(th_v3(1, 0, 0), PI / 4), az = th_quat_axis_angle(th_v3(0, 0, 1), PI / 4);
+    obj a = hull(r, &cube, th_v3(0, 0, 0), ax);
+    obj b = hull(r, &cube, th_v3(0.2f, (float)(2 * ridge - 0.02), 0.1f), az);
+    obj a2 = hull(r, &cube, th_v3(5, 0, 0), ax);
+    obj b2 = hull(r, &cube, th_v3(5.2f, (float)(2 * ridge + 0.03), 0.1f), az);
+    obj a3 = box(r, th_v3(0.5f, 0.5f, 0.5f), th_v3(-5, 0, 0), ax); /* box under a hull */
+    obj b3 = hull(r, &cube, th_v3(-4.8f, (float)(2 * ridge - 0.02), 0.1f), az);
+    pair_list l = { .n = 0 };
+    pair_add(&l, &a, &b, "crossed hull edges 2 cm deep");
+    pair_add(&l, &a2, &b2, "crossed hull edges 3 cm apart");
+    pair_add(&l, &a3, &b3, "box edge crossing a hull edge");
+    run_pairs(r, &l);
+    for (uint32_t i = 0; i < 3; i += 2) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, i);
+        expect_count(m, 1, l.what[i]);
+        expect_normal(m, 0, 1, 0, l.what[i]);
+        double x = i == 0 ? 0.2 : -4.8;
+        expect_point(m, (double[3]){ x, b.pos[1] * 0.5, 0 }, -0.02, 1e-5, l.what[i]);
+        if (!(feature(m, 0) & 0x80000000u)) fail_msg("%s: key %#x is no edge key", l.what[i], feature(m, 0));
+    }
+    expect_count(rig_manifold(r, 0, 1), 0, "apart");
+    /* Only an edge axis separates the second pair, and that is the axis it caches. */
+    if (rig_manifold(r, 0, 1)->axis.x >> 30 != 3u)
+        fail_msg("apart: cached axis %#x is no edge pair", rig_manifold(r, 0, 1)->axis.x);
+    rig_destroy(r);
+}
+
+static void test_hull_plane(void** state)
+{
+    (void)state;
+    rig* r = rig_create(32);
+    thull cube, hex, tri, bip;
+    thull_box(&cube, (double[3]){ 0.5, 0.3, 0.4 });
+    regular_prism(&hex, 6, 0.4, 0.2);
+    regular_prism(&tri, 3, 0.4, 0.5);
+    th_rng g = th_rng_seed(77);
+    thull_make(&bip, BIPYRAMID, 5, 0.4, 0.3, 0.5, &g);
+    tb_quat caps_up = th_quat_axis_angle(th_v3(1, 0, 0), PI / 2);
+    obj ground = plane(r, th_v3(0, 1, 0), 0, th_v3(0, 0, 0), identity);
+    obj flat = hull(r, &cube, th_v3(0, 0.29f, 0), identity);
+    obj hexo = hull(r, &hex, th_v3(3, 0.19f, 0), caps_up);
+    /* a triangular prism on a side: that quad's outward normal turned to -y */
+    double side[3];
+    memcpy(side, tri.plane[2], sizeof side);
+    tb_quat lay = quat_between(side, (double[3]){ 0, -1, 0 });
+    obj trio = hull(r, &tri, th_v3(-3, 0, 0), lay);
+    /* a bipyramid on its lowest vertex, 1 cm deep */
+    tb_quat tilt = quat_mul(th_quat_axis_angle(th_v3(0.3f, 0, 1), 0.2),
+                            th_quat_axis_angle(th_v3(1, 0, 0), -PI / 2)); /* apex down */
+    obj bipo = hull(r, &bip, th_v3(0, 0, 5), tilt);
+    double lowest[2] = { INFINITY, INFINITY };
+    for (uint32_t k = 0; k < bipo.hull->nv; k++) {
+        double w[3];
+        obj_to_world(&bipo, bipo.hull->v[k], w);
+        if (w[1] < lowest[0]) lowest[1] = lowest[0], lowest[0] = w[1];
+        else if (w[1] < lowest[1]) lowest[1] = w[1];
+    }
+    assert_true(lowest[1] - lowest[0] > 0.1);
+    /* moved (not turned: its body frame is the principal frame) until 1 cm deep */
+    obj_move(r, &bipo, th_v3((float)bipo.pos[0], (float)(bipo.pos[1] - lowest[0] - 0.01),
+                             (float)bipo.pos[2]), bipo.rot);
+    double low = INFINITY;
+    for (uint32_t k = 0; k < trio.hull->nv; k++) {
+        double w[3];
+        obj_to_world(&trio, trio.hull->v[k], w);
+        low = fmin(low, w[1]);
+    }
+    obj_move(r, &trio, th_v3((float)trio.pos[0], (float)(trio.pos[1] - low - 0.01),
+                             (float)trio.pos[2]), trio.rot);
+    pair_list l = { .n = 0 };
+    pair_add(&l, &ground, &flat, "box hull flat");
+    pair_add(&l, &ground, &hexo, "hexagonal prism on its cap");
+    pair_add(&l, &ground, &trio, "triangular prism on a side");
+    pair_add(&l, &ground, &bipo, "bipyramid on a vertex");
+    run_pairs(r, &l);
+    static const uint32_t counts[4] = { 4, 4, 4, 1 };
+    const obj* bodies[4] = { &flat, &hexo, &trio, &bipo };
+    for (uint32_t i = 0; i < 4; i++) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, i);
+        expect_count(m, counts[i], l.what[i]);
+        expect_normal(m, 0, 1, 0, l.what[i]);
+        for (uint32_t k = 0; k < m->info.x; k++) {
+            /* each point is a vertex of the hull (its key), 1 cm deep, half way up */
+            uint32_t v = feature(m, k);
+            assert_true(v < bodies[i]->hull->nv);
+            double w[3];
+            obj_to_world(bodies[i], bodies[i]->hull->v[v], w);
+            w[1] -= 0.5 * w[1];
+            expect_point(m, w, -0.01, 2e-5, l.what[i]);
+        }
+    }
+    rig_destroy(r);
+}
+
+/* A sphere of radius 0.2 at hull-frame points near a face, an edge, a vertex, and inside;
+ * the hull is the box of test_sphere_box, so the answers are the same. */
+static void test_hull_sphere(void** state)
+{
+    (void)state;
+    static const struct { double centre[3], surface[3], outward[3], sep; const char* what; } cases[] = {
+        { { 0.3, 0.68, -0.1 }, { 0.3, 0.5, -0.1 }, { 0, 1, 0 }, -0.02, "face" },
+        { { 1.1, 0.6, 0 }, { 1, 0.5, 0 }, { 0.70710678, 0.70710678, 0 }, 0.14142136 - 0.2, "edge" },
+        { { 1.1, 0.6, 0.35 }, { 1, 0.5, 0.25 }, { 0.57735027, 0.57735027, 0.57735027 },
+          0.17320508 - 0.2, "vertex" },
+        { { 0.9, 0.1, 0.05 }, { 1, 0.1, 0.05 }, { 1, 0, 0 }, -0.3, "centre inside" },
+        { { -0.1, -0.2, -0.45 }, { -0.1, -0.2, -0.25 }, { 0, 0, -1 }, 0.0, "touching" },
+        { { 0.2, 0.1, 0.48 }, { 0.2, 0.1, 0.25 }, { 0, 0, 1 }, 0.03, "beyond the margin" },
+        { { 1.3, 0.8, 0.55 }, { 1, 0.5, 0.25 }, { 0.57735027, 0.57735027, 0.57735027 },
+          0.51961524 - 0.2, "far beyond a vertex" },
+    };
+    const int n = (int)(sizeof cases / sizeof cases[0]);
+    rig* r = rig_create(32);
+    thull slab;
+    thull_box(&slab, (double[3]){ 1, 0.5, 0.25 });
+    obj b = hull(r, &slab, th_v3(0.5f, -0.2f, 0.3f), th_quat_axis_angle(th_v3(1, 2, 3), 0.7));
+    obj s[8];
+    pair_list l = { .n = 0 };
+    for (int i = 0; i < n; i++) {
+        double c[3];
+        obj_to_world(&b, cases[i].centre, c);
+        s[i] = sphere(r, 0.2f, th_v3((float)c[0], (float)c[1], (float)c[2]));
+        pair_add(&l, &s[i], &b, cases[i].what);
+    }
+    run_pairs(r, &l);
+    for (int i = 0; i < n; i++) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, (uint32_t)i);
+        if (cases[i].sep >= MARGIN) { expect_count(m, 0, cases[i].what); continue; }
+        expect_count(m, 1, cases[i].what);
+        double mid[3], want[3], normal[3];
+        for (int k = 0; k < 3; k++) mid[k] = cases[i].surface[k] + cases[i].outward[k] * cases[i].sep * 0.5;
+        obj_to_world(&b, mid, want);
+        th_quat_rotate(b.rot, cases[i].outward, normal);
+        expect_point(m, want, cases[i].sep, 1e-5, cases[i].what);
+        expect_normal(m, -normal[0], -normal[1], -normal[2], cases[i].what);
+    }
+    rig_destroy(r);
+}
+
+/* A box against a hull goes through the box's hull data; against the same geometry as a
+ * box it takes box_box's path. Both must agree. */
+static void check_box_hull_like_box_box(kind k, uint32_t n, uint64_t seed)
+{
+    rig* r = rig_create(2 * n);
+    obj* a = calloc(n, sizeof *a);
+    obj* b = calloc(n, sizeof *b);
+    obj* hb = calloc(n, sizeof *hb);
+    assert_true(a && b && hb);
+    pair_list l = { .n = 0 };
+    for (uint32_t i = 0; i < n; i++) {
+        double target;
+        random_pair(r, k, seed + i, &a[i], &b[i], &target);
+        hb[i] = hull(r, b[i].hull, th_v3((float)b[i].pos[0], (float)b[i].pos[1], (float)b[i].pos[2]), b[i].rot);
+    }
+    for (uint32_t i = 0; i < n; i++) pair_add(&l, &a[i], &b[i], "box-box");
+    set_pair(r, 0, 0, &a[0], &b[0]);
+    for (uint32_t i = 0; i < n; i++) {
+        set_pair(r, 0, i, &a[i], &b[i]);
+        set_pair(r, 0, n + i, &a[i], &hb[i]);
+    }
+    rig_run(r, 0, 2 * n);
+    uint32_t touching = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, i), *h = rig_manifold(r, 0, n + i);
+        check_manifold(h, &a[i], &hb[i], "box-hull");
+        if (m->info.x != h->info.x)
+            fail_msg("seed %llu: box-box %u points, box-hull %u", (unsigned long long)(seed + i),
+                     m->info.x, h->info.x);
+        if (m->info.x == 0) continue;
+        touching++;
+        if (!th_near(m->normal.x, h->normal.x, 1e-4, 0) || !th_near(m->normal.y, h->normal.y, 1e-4, 0) ||
+            !th_near(m->normal.z, h->normal.z, 1e-4, 0))
+            fail_msg("seed %llu: normals (%g %g %g) and (%g %g %g)", (unsigned long long)(seed + i),
+                     m->normal.x, m->normal.y, m->normal.z, h->normal.x, h->normal.y, h->normal.z);
+        float dm = INFINITY, dh = INFINITY;
+        for (uint32_t p = 0; p < m->info.x; p++) dm = fminf(dm, m->point[p].w), dh = fminf(dh, h->point[p].w);
+        if (!th_near(dm, dh, 1e-4, 0))
+            fail_msg("seed %llu: deepest %g and %g", (unsigned long long)(seed + i), dm, dh);
+    }
+    assert_true(touching > n / 3);
+    free(a);
+    free(b);
+    free(hb);
+    rig_destroy(r);
+}
+
+static void test_box_hull_like_box_box(void** state)
+{
+    (void)state;
+    check_box_hull_like_box_box(BOX_BOX, 96, 1000);
+    check_box_hull_like_box_box(BOX_STACK, 96, 6000);
+}
+
+static uint32_t axis_code(uint32_t type, uint32_t i, uint32_t j)
+{
+    return type << 30 | i << 15 | j;
+}
+
+/* Pairs (a[i], b[i]) at i of half `parity`; last step's manifolds are those of the other
+ * half at the same index when `warm`, else there are none. */
+static void run_single(rig* r, uint32_t parity, const obj* a, const obj* b, uint32_t n, int warm)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        set_pair(r, parity, i, &a[i], &b[i]);
+        set_pair(r, parity ^ 1u, i, &a[i], &b[i]);
+        tb_gpu_uvec4* owned = &r->body_pairs[a[i].slot];
+        *owned = (tb_gpu_uvec4){ 0, 0, 0, 0 };
+        if (!warm) continue;
+        if (parity == 1) owned->x = i, owned->y = 1;
+        else owned->z = i, owned->w = 1;
+    }
+    rig_run(r, parity, n);
+}
+
+static int same_contact(const tb_gpu_manifold* x, const tb_gpu_manifold* y)
+{
+    return x->info.x == y->info.x && memcmp(&x->normal, &y->normal, sizeof x->normal) == 0 &&
+           memcmp(x->point, y->point, sizeof x->point) == 0 &&
+           memcmp(&x->feature, &y->feature, sizeof x->feature) == 0;
+}
+
+/* The cached axis: separated pairs stay separated at the cost of one axis, pairs that come
+ * into contact get their points, and no cached axis, however wrong, hides a contact. */
+static void test_hull_cached_axis(void** state)
+{
+    (void)state;
+    const uint32_t n = 64;
+    rig* r = rig_create(256);
+    obj a[256], b[256];
+    double target[256];
+    uint32_t separated = 0;
+    for (uint32_t i = 0; i < n; i++) {
+        random_pair(r, i % 2 ? HULL_HULL : BOX_HULL, 21000 + i, &a[i], &b[i], &target[i]);
+        separated += target[i] >= MARGIN;
+    }
+    assert_true(separated > 4);
+    run_single(r, 0, a, b, n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, i);
+        float sep;
+        memcpy(&sep, &m->axis.y, sizeof sep);
+        if (m->axis.x == 0) fail_msg("pair %u: no axis cached", i);
+        if ((m->info.x == 0) != (sep >= MARGIN))
+            fail_msg("pair %u: %u points, cached axis %#x separates by %g", i, m->info.x, m->axis.x, sep);
+        if (target[i] >= MARGIN && !th_near(sep, target[i], 1e-4, 0) && sep > target[i])
+            fail_msg("pair %u: cached separation %g beyond the true %g", i, sep, target[i]);
+    }
+    /* The next step from the same poses: the same manifolds, cached axis and all. */
+    run_single(r, 1, a, b, n, 1);
+    for (uint32_t i = 0; i < n; i++) {
+        const tb_gpu_manifold* m0 = rig_manifold(r, 0, i), *m1 = rig_manifold(r, 1, i);
+        if (!same_contact(m0, m1) || m0->axis.x != m1->axis.x || m0->axis.y != m1->axis.y)
+            fail_msg("pair %u: the warm step changed the manifold", i);
+    }
+    /* Every separated pair moved into contact along its direction: points despite the
+     * cached separating axis, the same as without any cache. */
+    for (uint32_t i = 0; i < n; i++) {
+        if (target[i] < MARGIN) continue;
+        double dir[3];
+        sub3(b[i].pos, a[i].pos, dir);
+        normalize3(dir);
+        obj moved = b[i];
+        place_at(&moved, &a[i], dir, -0.01);
+        obj_move(r, &b[i], th_v3((float)moved.pos[0], (float)moved.pos[1], (float)moved.pos[2]), b[i].rot);
+    }
+    run_single(r, 0, a, b, n, 1);
+    tb_gpu_manifold cached[256];
+    memcpy(cached, rig_manifold(r, 0, 0), n * sizeof *cached);
+    run_single(r, 0, a, b, n, 0);
+    for (uint32_t i = 0; i < n; i++) {
+        if (target[i] >= MARGIN && cached[i].info.x == 0) fail_msg("pair %u: the cache hid a contact", i);
+        if (!same_contact(&cached[i], rig_manifold(r, 0, i)))
+            fail_msg("pair %u: with and without the cache the manifolds differ", i);
+        check_manifold(&cached[i], &a[i], &b[i], "moved into contact");
+    }
+
+    /* Forged caches: copies of a touching pair, each with last step's axis set to one face
+     * of a, of b, or one edge pair (Minkowski face or not), or out of range. */
+    rig_destroy(r);
+    r = rig_create(256);
+    thull cube, prism;
+    thull_box(&cube, (double[3]){ 0.5, 0.5, 0.5 });
+    th_rng g = th_rng_seed(5);
+    thull_make(&prism, FRUSTUM, 5, 0.5, 0.4, 0.3, &g);
+    const double ridge = 0.5 * sqrt(2.0);
+    tb_quat ax = th_quat_axis_angle(th_v3(1, 0, 0), PI / 4), az = th_quat_axis_angle(th_v3(0, 0, 1), PI / 4);
+    /* the hulls as the world built them: their face and edge counts */
+    obj probe_a = hull(r, &cube, th_v3(-50, 0, 0), identity);
+    obj probe_b = hull(r, &prism, th_v3(-60, 0, 0), identity);
+    const thull* ha = probe_a.hull, *hb = probe_b.hull;
+    uint32_t codes[256], m = 0;
+    for (uint32_t f = 0; f < ha->nf; f++) codes[m++] = axis_code(1, 0, f);
+    for (uint32_t f = 0; f < hb->nf; f++) codes[m++] = axis_code(2, 0, f);
+    for (uint32_t i = 0; i < ha->ne; i++)
+        for (uint32_t j = 0; j < hb->ne && m < 200; j += 2) codes[m++] = axis_code(3, i, j);
+    codes[m++] = axis_code(1, 0, 999);
+    codes[m++] = axis_code(3, 999, 0);
+    codes[m++] = axis_code(2, 0, 77);
+    for (int config = 0; config < 2; config++) {
+        for (uint32_t i = 0; i < m; i++) {
+            float x = 3.0f * (float)i;
+            if (config == 0) { /* crossed ridges: an edge contact */
+                a[i] = hull(r, &cube, th_v3(x, 0, 0), ax);
+                b[i] = hull(r, &prism, th_v3(x + 0.1f, (float)(ridge + 0.28), 0.05f), az);
+            } else {           /* the frustum resting on the cube: a face contact */
+                a[i] = hull(r, &cube, th_v3(x, 0, 0), identity);
+                b[i] = hull(r, &prism, th_v3(x + 0.1f, 0.5f, 0.05f), th_quat_axis_angle(th_v3(1, 0, 0), -PI / 2));
+            }
+        }
+        for (uint32_t i = 0; i < m; i++) { /* placed 1 cm deep along y */
+            obj moved = b[i];
+            place_at(&moved, &a[i], (double[3]){ 0, 1, 0 }, -0.01);
+            obj_move(r, &b[i], th_v3((float)moved.pos[0], (float)moved.pos[1], (float)moved.pos[2]), b[i].rot);
+        }
+        run_single(r, 1, a, b, m, 0);
+        tb_gpu_manifold fresh = *rig_manifold(r, 1, 0);
+        assert_true(fresh.info.x > 0);
+        for (uint32_t i = 0; i < m; i++) {
+            r->manifolds[1 * r->cap + i].axis = (tb_gpu_uvec4){ codes[i], 0, 0, 0 };
+            memset(&r->manifolds[1 * r->cap + i].impulse, 0, sizeof fresh.impulse);
+        }
+        run_single(r, 0, a, b, m, 1);
+        for (uint32_t i = 0; i < m; i++) {
+            const tb_gpu_manifold* got = rig_manifold(r, 0, i);
+            if (got->info.x != fresh.info.x)
+                fail_msg("config %d: cached axis %#x: %u points, %u without", config, codes[i],
+                         got->info.x, fresh.info.x);
+            check_manifold(got, &a[i], &b[i], "forged cache");
+        }
+    }
+    rig_destroy(r);
+}
+
+/* The same hull contacts at two slightly different poses have the same feature keys. */
+static void test_hull_feature_keys_stable(void** state)
+{
+    (void)state;
+    rig* r = rig_create(32);
+    thull slab, cube, tri;
+    thull_box(&slab, (double[3]){ 2, 0.5, 2 });
+    thull_box(&cube, (double[3]){ 0.5, 0.5, 0.5 });
+    regular_prism(&tri, 3, 0.4, 0.2);
+    tb_quat nudge = th_quat_axis_angle(th_v3(0.3f, 1, -0.5f), 2e-3);
+    tb_quat turn = th_quat_axis_angle(th_v3(0, 1, 0), 0.3);
+    tb_quat caps_up = th_quat_axis_angle(th_v3(1, 0, 0), PI / 2);
+    tb_quat ax = th_quat_axis_angle(th_v3(1, 0, 0), PI / 4), az = th_quat_axis_angle(th_v3(0, 0, 1), PI / 4);
+    const double ridge = 0.5 * sqrt(2.0);
+    obj ground = plane(r, th_v3(0, 1, 0), 0, th_v3(0, 0, 0), identity);
+    obj o[16];
+    int n = 0;
+    for (int copy = 0; copy < 2; copy++) {
+        float dx = copy ? 1.5e-3f : 0, dy = copy ? -1e-3f : 0, z = copy ? 40.0f : 0;
+        o[n++] = hull(r, &slab, th_v3(0, 0, z), identity);
+        o[n++] = hull(r, &cube, th_v3(0.3f + dx, 0.99f + dy, z - 0.2f), turn);
+        o[n++] = hull(r, &slab, th_v3(10, 0, z), identity);
+        o[n++] = hull(r, &tri, th_v3(10.2f + dx, 0.39f + dy, z), quat_mul(turn, caps_up));
+        o[n++] = hull(r, &cube, th_v3(20, 0, z), ax);
+        o[n++] = hull(r, &cube, th_v3(20.2f + dx, (float)(2 * ridge - 0.02) + dy, z + 0.1f), az);
+        o[n++] = hull(r, &cube, th_v3(30 + dx, 0.49f + dy, z), turn);
+    }
+    for (int i = 7; i < 14; i++) {
+        if (i == 7 || i == 9 || i == 11) continue; /* the supports stay */
+        obj_move(r, &o[i], th_v3((float)o[i].pos[0], (float)o[i].pos[1], (float)o[i].pos[2]),
+                 quat_mul(nudge, o[i].rot));
+    }
+    pair_list l = { .n = 0 };
+    for (int copy = 0; copy < 2; copy++) {
+        const obj* c = &o[7 * copy];
+        pair_add(&l, &c[0], &c[1], "cube on a slab");
+        pair_add(&l, &c[2], &c[3], "triangular prism on its cap on a slab");
+        pair_add(&l, &c[4], &c[5], "crossed edges");
+        pair_add(&l, &ground, &c[6], "cube hull on the ground");
+    }
+    run_pairs(r, &l);
+    /* Four clip corners or fewer: more would leave the choice to the reduction, and the
+     * deepest of a face lying flat is whichever the nudge tilts lowest. */
+    static const uint32_t counts[4] = { 4, 3, 1, 4 };
+    for (uint32_t i = 0; i < 4; i++) {
+        const tb_gpu_manifold* m = rig_manifold(r, 0, i), *m2 = rig_manifold(r, 0, 4 + i);
+        expect_count(m, counts[i], l.what[i]);
+        expect_count(m2, counts[i], l.what[i]);
+        uint32_t f[4], f2[4];
+        sorted_features(m, f);
+        sorted_features(m2, f2);
+        for (uint32_t k = 0; k < counts[i]; k++)
+            if (f[k] != f2[k]) fail_msg("%s: feature %u is %#x, nudged %#x", l.what[i], k, f[k], f2[k]);
+        for (uint32_t k = 1; k < counts[i]; k++)
+            if (f[k] == f[k - 1]) fail_msg("%s: two points share feature %#x", l.what[i], f[k]);
+    }
+    rig_destroy(r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1243,6 +2193,15 @@ int main(void)
         cmocka_unit_test(test_feature_keys_stable),
         cmocka_unit_test(test_warm_start),
         cmocka_unit_test(test_abandoned_step_and_range),
+        cmocka_unit_test(test_hull_on_hull),
+        cmocka_unit_test(test_hull_crossed_edges),
+        cmocka_unit_test(test_hull_plane),
+        cmocka_unit_test(test_hull_sphere),
+        cmocka_unit_test(test_random_hulls),
+        cmocka_unit_test(test_random_hull_sphere_plane),
+        cmocka_unit_test(test_box_hull_like_box_box),
+        cmocka_unit_test(test_hull_cached_axis),
+        cmocka_unit_test(test_hull_feature_keys_stable),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

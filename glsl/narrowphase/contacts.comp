@@ -18,22 +18,33 @@
 #include "sphere.glsl"
 #include "box_plane.glsl"
 #include "box_box.glsl"
+#include "hull.glsl"
+#include "hull_sat.glsl"
+#include "hull_clip.glsl"
+#include "hull_hull.glsl"
+#include "hull_plane.glsl"
+#include "hull_sphere.glsl"
 
-// Shape types in canonical order: sphere < box < plane, so each routine knows which shape
-// comes first. Plane against plane never arrives (planes are static); it gets no points.
+// Shape types in canonical order: sphere < box < plane < hull, so each routine knows which
+// shape comes first. Plane against plane never arrives (planes are static); it gets no
+// points. A box meets a hull through its hull data; box against box keeps its own path.
 uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
+    bool hull = second.type == TB_GPU_SHAPE_HULL;
     if (first.type == TB_GPU_SHAPE_SPHERE) {
         if (second.type == TB_GPU_SHAPE_SPHERE) return np_sphere_sphere(t, first, second, margin, normal);
         if (second.type == TB_GPU_SHAPE_BOX) return np_sphere_box(t, first, second, margin, normal);
+        if (hull) return np_sphere_hull(t, first, second, margin, normal);
         return np_sphere_plane(t, first, second, margin, normal);
     }
     if (first.type == TB_GPU_SHAPE_BOX) {
         if (second.type == TB_GPU_SHAPE_BOX) return np_box_box(t, first, second, margin, normal);
+        if (hull) return np_hull_hull(t, first, second, margin, normal);
         return np_box_plane(t, first, second, margin, normal);
     }
-    return 0u;
+    if (first.type == TB_GPU_SHAPE_PLANE) return hull ? np_plane_hull(t, first, second, margin, normal) : 0u;
+    return np_hull_hull(t, first, second, margin, normal);
 }
 
 // Writes the manifold of pair p; returns its point count.
@@ -48,6 +59,8 @@ uint pair_contacts(uint p)
     // same instructions, so their points agree to the bit.
     np_body first = swapped ? body_b : body_a, second = swapped ? body_a : body_b;
     vec3 normal;
+    // The separating axis a hull pair caches for the next step; other pairs have none.
+    manifolds[p].axis = uvec4(0u);
     uint count = np_collide(t, first, second, params.contact.x, normal);
     np_finish(t, count, swapped ? -normal : normal, a, b,
               sqrt(body_a.material.x * body_b.material.x), max(body_a.material.y, body_b.material.y));

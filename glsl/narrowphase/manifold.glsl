@@ -16,6 +16,7 @@ struct np_body {
     vec4 params;    // sphere: x radius; box: xyz half extents; plane: xyz normal, w offset
     vec2 material;  // x friction, y restitution
     uint type;      // TB_GPU_SHAPE_*
+    uint shape;     // index into shapes: hull routines find the hull data through it
 };
 
 np_body np_load_body(uint i)
@@ -27,6 +28,7 @@ np_body np_load_body(uint i)
     b.params = shapes[s].params;
     b.material = shapes[s].material.xy;
     b.type = shapes[s].info.x;
+    b.shape = s;
     return b;
 }
 

@@ -1,0 +1,121 @@
+// Convex hulls as the narrowphase reads them, rigid frames between two bodies, and the
+// contact reduction every hull routine shares.
+//
+// A hull (boxes carry one too) lives in the world's hull buffers (layout.h,
+// TB_BIND_HULL_VECTORS and TB_BIND_HULL_TOPOLOGY), located by tb_gpu_shape.hull, in its body
+// frame. Faces are convex polygons, counter-clockwise seen from outside, with outward unit
+// normals; an edge v0 -> v1 runs counter-clockwise on its left face and clockwise on its
+// right face, so the edge direction is cross(left normal, right normal) scaled by a positive
+// factor (src/geom/hull.h has the same conventions).
+#ifndef TB_NP_HULL_GLSL
+#define TB_NP_HULL_GLSL
+
+struct np_hull {
+    uvec4 base;     // x first vertex, y first face plane (hull_vectors); z first edge word,
+                    // w face base (hull_topology)
+    uint vertices;
+    uint faces;
+    uint edges;
+};
+
+np_hull np_hull_of(np_body b)
+{
+    np_hull h;
+    h.base = shapes[b.shape].hull;
+    uvec4 info = shapes[b.shape].info;
+    h.vertices = info.y;
+    h.faces = info.z;
+    h.edges = info.w;
+    return h;
+}
+
+vec3 np_hull_vertex(np_hull h, uint i)
+{
+    return hull_vectors[h.base.x + i].xyz;
+}
+
+// xyz outward unit normal, w offset: dot(n, x) = w on the face, less inside.
+vec4 np_hull_plane(np_hull h, uint f)
+{
+    return hull_vectors[h.base.y + f];
+}
+
+uvec2 np_unpack16(uint word)
+{
+    return uvec2(word & 0xffffu, word >> 16u);
+}
+
+uvec2 np_hull_edge_vertices(np_hull h, uint e)
+{
+    return np_unpack16(hull_topology[h.base.z + 2u * e]);
+}
+
+// x the left face, y the right face.
+uvec2 np_hull_edge_faces(np_hull h, uint e)
+{
+    return np_unpack16(hull_topology[h.base.z + 2u * e + 1u]);
+}
+
+// x where the face's vertex indices start (from the face base), y how many; the count is
+// bounded so a private polygon of the clipper can hold it.
+uvec2 np_hull_face(np_hull h, uint f)
+{
+    uvec2 face = np_unpack16(hull_topology[h.base.w + f]);
+    return uvec2(face.x, min(face.y, uint(TB_HULL_MAX_FACE_VERTICES)));
+}
+
+// Vertex k (counter-clockwise from outside) of a face np_hull_face returned.
+vec3 np_hull_face_vertex(np_hull h, uvec2 face, uint k)
+{
+    return np_hull_vertex(h, hull_topology[h.base.w + face.x + k]);
+}
+
+// ---- rigid frames --------------------------------------------------------------------------
+
+// Maps the body frame of one body into that of another: x -> rot * x + pos.
+struct np_frame {
+    mat3 rot;
+    vec3 pos;
+};
+
+// The frame taking `from`'s body coordinates to `to`'s.
+np_frame np_frame_between(np_body to, np_body from)
+{
+    mat3 back = transpose(to.rot);
+    np_frame f;
+    f.rot = back * from.rot;
+    f.pos = back * (from.pos - to.pos);
+    return f;
+}
+
+vec3 np_apply(np_frame f, vec3 x)
+{
+    return f.rot * x + f.pos;
+}
+
+// ---- contact reduction ---------------------------------------------------------------------
+
+// More than four candidate points are reduced as in Bullet 3's GPU pipeline (Coumans,
+// "GPU rigid body simulation", GDC 2013): keep the deepest point (so the solver removes the
+// penetration), then the point farthest from it in the contact plane, then the two points
+// farthest either side of the line through those two (the extremes along two orthogonal
+// directions in the plane: the largest quadrilateral the four can span).
+//
+// Callers run pick 0 to 3 over their candidates in a fixed order, skipping those already
+// picked, and keep the first candidate of the highest score: the choice is deterministic.
+// q is a candidate, h its height above the contact plane (negative: penetrating), p0 and p1
+// the first two picks and n the plane's normal, all in one frame.
+float np_reduce_score(uint pick, vec3 q, float h, vec3 p0, vec3 p1, vec3 n)
+{
+    if (pick == 0u) return -h;
+    vec3 d = q - p0;
+    if (pick == 1u) {
+        d -= n * dot(d, n);  // distance within the contact plane
+        return dot(d, d);
+    }
+    // Signed area of (p0, p1, q) seen along n; the heights do not change it.
+    float side = dot(cross(p1 - p0, d), n);
+    return pick == 2u ? side : -side;
+}
+
+#endif
