@@ -7,11 +7,13 @@
  * the very same colours.
  *
  * Solve: hand-made manifolds between a few bodies, one step of colouring, apply_forces,
- * prepare, solve and integrate, compared with what one step of the contact model gives in
- * closed form (resting impulse m g dt, bounce e v, speculative arrival, split-impulse lift,
- * kinetic friction mu g dt, a stack's 3:2:1 impulses), bit-identical when repeated. */
+ * prepare, the substeps and integrate, compared with what one step of the contact model
+ * gives in closed form (resting impulse m g dt, bounce e v, speculative arrival, a push-out
+ * that adds no velocity, kinetic friction mu g dt, a stack's 3:2:1 impulses), bit-identical
+ * when repeated. */
 #include "harness.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -617,9 +619,9 @@ static void test_chain(void** state)
 
 /* ---- the batched solve ------------------------------------------------------------------ */
 
-#define SLOP 0.005f
-#define RECOVERY 0.2f
 #define THRESHOLD 1.0f
+#define PUSH_SPEED 3.0f
+#define SUBSTEPS 6u
 
 /* The ground: a static box whose top face is the plane y = 0.5. */
 static tb_body_def ground_def(tb_world* w)
@@ -642,11 +644,11 @@ static void set_contact(fixture* f, uint32_t parity, uint32_t p, uint32_t a, uin
     for (uint32_t k = 0; k < count; k++) m->point[k] = points[k];
 }
 
-/* The solver's part of a step on the pairs written: colouring, prepare, apply_forces, solve,
- * integrate. apply_forces runs after the colouring so that a step abandoned for colours
- * leaves the bodies untouched. */
+/* The solver's part of a step on the pairs written: colouring, prepare, apply_forces, the
+ * substeps, integrate. apply_forces runs after the colouring so that a step abandoned for
+ * colours leaves the bodies untouched. The contacts are as soft as the world's defaults. */
 static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t rounds,
-                        uint32_t iterations)
+                        uint32_t substeps, uint32_t iterations)
 {
     for (uint32_t p = 0; p < pairs; p++) pairs_of(f)[parity * f->capacity + p].z = TB_NO_COLOUR;
     reset_counters(f, pairs, parity);
@@ -657,11 +659,14 @@ static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t ro
     th_assert_ok(tb_solver_record_colouring(&f->solver, &list, counters, rounds, TB_SOLVER_SUB_ROUNDS));
     th_assert_ok(tb_solver_record_prepare(&f->solver, &list, counters));
     th_assert_ok(tb_pass_list_add(&list, &f->w->diag, &forces));
-    th_assert_ok(tb_solver_record_solve(&f->solver, &list, counters, rounds, iterations));
+    th_assert_ok(tb_solver_record_solve(&f->solver, &list, counters, rounds, substeps, iterations));
     th_assert_ok(tb_pass_list_add(&list, &f->w->diag, &integrate));
     tb_gpu_params params = colouring_params(f, rounds);
+    params.counts.z = substeps;
     params.capacity.w = iterations;
-    params.contact = (tb_gpu_vec4){ 0.02f, THRESHOLD, SLOP, RECOVERY };
+    params.contact = (tb_gpu_vec4){ 0.02f, THRESHOLD, PUSH_SPEED, 0 };
+    params.soft = tb_contact_softness(f->w, DT / (float)substeps, 1.0);
+    params.soft_static = tb_contact_softness(f->w, DT / (float)substeps, 2.0);
     run_passes(f, &params, &list);
     vkDestroyPipeline(f->w->gpu.device, forces.pipeline, NULL);
     vkDestroyPipeline(f->w->gpu.device, integrate.pipeline, NULL);
@@ -699,8 +704,9 @@ static tb_gpu_vec4 impulse_of(fixture* f, uint32_t parity, uint32_t p, uint32_t 
     return manifolds_of(f)[parity * f->capacity + p].impulse[k];
 }
 
-/* A unit sphere resting on the ground, the pair in either order: one step's normal impulse
- * is m g dt and the sphere keeps still; the next step, warm started, needs one iteration. */
+/* A unit sphere resting on the ground, the pair in either order: each substep's normal
+ * impulse is m g h, the step's m g dt, and the sphere keeps still; warm started, the next
+ * step does the same. */
 static void test_solve_resting_sphere(void** state)
 {
     (void)state;
@@ -712,13 +718,13 @@ static void test_solve_resting_sphere(void** state)
         double g = -tb_world_get_gravity(w).y, m = mass_of(&f, 1);
         tb_gpu_vec4 point = { 0, 0.5f, 0, 0 };
         set_contact(&f, flip, 0, flip, 1 - flip, th_v3(0, flip ? -1.0f : 1.0f, 0), 0.5f, 0, 1, &point);
-        solver_step(&f, 1, flip, 4, 8);
-        th_assert_near(velocity_of(&f, 1).y, 0, 1e-6, 0);
-        th_assert_near(impulse_of(&f, flip, 0, 0).x, m * g * DT, 1e-7, 1e-5);
-        th_assert_near(position_of(&f, 1).y, 1.0, 1e-6, 0);
-        solver_step(&f, 1, flip, 4, 1);
-        th_assert_near(velocity_of(&f, 1).y, 0, 1e-6, 0);
-        th_assert_near(impulse_of(&f, flip, 0, 0).x, m * g * DT, 1e-7, 1e-5);
+        for (int step = 0; step < 2; step++) {
+            solver_step(&f, 1, flip, 4, SUBSTEPS, 1);
+            th_assert_near(velocity_of(&f, 1).y, 0, 1e-6, 0);
+            th_assert_near(impulse_of(&f, flip, 0, 0).x, m * g * DT / SUBSTEPS, 0, 1e-3);
+            th_assert_near(impulse_of(&f, flip, 0, 0).w, m * g * DT, 0, 1e-3);
+            th_assert_near(position_of(&f, 1).y, 1.0, 2e-5, 0);
+        }
         fixture_destroy(&f);
     }
 }
@@ -735,7 +741,8 @@ static void sphere_contact(fixture* f, float height, float vy, float separation,
 }
 
 /* Restitution: above the threshold the sphere leaves at e times the approach speed it hit
- * with (before this step's gravity: the solver data is prepared first); below it, it stops. */
+ * with (the fastest the solve saw); below it, it stops.
+ * Either way it stays at the surface within the step (the bounce follows the substeps). */
 static void test_solve_restitution(void** state)
 {
     (void)state;
@@ -743,17 +750,31 @@ static void test_solve_restitution(void** state)
     for (int i = 0; i < 2; i++) {
         fixture f;
         sphere_contact(&f, 1.0f, -speeds[i], 0, 0.5f);
-        double approach = speeds[i];
-        solver_step(&f, 1, 0, 2, 8);
+        /* It hits with the speed of the first substep: the step's start plus g h. */
+        double g = -tb_world_get_gravity(f.w).y, approach = speeds[i] + g * DT / SUBSTEPS;
+        solver_step(&f, 1, 0, 2, SUBSTEPS, 1);
         double expected = approach > THRESHOLD ? 0.5 * approach : 0;
         th_assert_near(velocity_of(&f, 1).y, expected, 1e-5, 1e-5);
-        th_assert_near(position_of(&f, 1).y, 1.0 + expected * DT, 1e-5, 0);
+        th_assert_near(position_of(&f, 1).y, 1.0, 1e-3, 0);
         fixture_destroy(&f);
     }
 }
 
+/* Where a free fall from rest at speed v0 (y) ends after one step of substeps. */
+static double fall(double y0, double v0, double g, uint32_t substeps, double* v_end)
+{
+    double y = y0, v = v0, h = DT / substeps;
+    for (uint32_t k = 0; k < substeps; k++) {
+        v -= g * h;
+        y += v * h;
+    }
+    *v_end = v;
+    return y;
+}
+
 /* Speculative contact 0.1 m apart: a slow fall does not reach the ground within the step and
- * is left alone; a fast one is slowed to arrive exactly (no bounce from a distance, e = 0). */
+ * is left alone; a fast one lands exactly on the surface within the step and stops there
+ * (no bounce from a distance, e = 0). */
 static void test_solve_speculative(void** state)
 {
     (void)state;
@@ -761,27 +782,33 @@ static void test_solve_speculative(void** state)
     for (int i = 0; i < 2; i++) {
         fixture f;
         sphere_contact(&f, 1.1f, -speeds[i], 0.1f, 0);
-        double g = -tb_world_get_gravity(f.w).y, v = -(speeds[i] + g * DT);
-        solver_step(&f, 1, 0, 2, 8);
-        double expected = v * DT > -0.1 ? v : -0.1 / DT;
-        th_assert_near(velocity_of(&f, 1).y, expected, 1e-4, 1e-5);
-        th_assert_near(position_of(&f, 1).y, 1.1 + expected * DT, 1e-5, 0);
-        if (i == 1) th_assert_near(position_of(&f, 1).y, 1.0, 1e-5, 0);
+        double g = -tb_world_get_gravity(f.w).y, v;
+        double y = fall(1.1, -speeds[i], g, SUBSTEPS, &v);
+        solver_step(&f, 1, 0, 2, SUBSTEPS, 1);
+        if (i == 0) {
+            th_assert_near(velocity_of(&f, 1).y, v, 1e-4, 1e-5);
+            th_assert_near(position_of(&f, 1).y, y, 1e-5, 0);
+        } else {
+            th_assert_near(position_of(&f, 1).y, 1.0, 1e-3, 0);
+            assert_true(fabs(velocity_of(&f, 1).y) < 0.1);
+        }
         fixture_destroy(&f);
     }
 }
 
-/* 10 cm of penetration: split impulses lift the sphere by the recovery rate times the depth
- * beyond the slop, while its stored velocity stays zero (no energy from recovery). */
-static void test_solve_split_impulse(void** state)
+/* 10 cm of penetration: the soft contact pushes the sphere out, no faster than the push
+ * speed, and the relax leaves its velocity at zero (no energy from the push-out), even with
+ * restitution (it was not approaching). */
+static void test_solve_push_out(void** state)
 {
     (void)state;
     fixture f;
     sphere_contact(&f, 0.9f, 0, -0.1f, 0.8f);
-    solver_step(&f, 1, 0, 2, 8);
+    solver_step(&f, 1, 0, 2, SUBSTEPS, 1);
     th_assert_near(velocity_of(&f, 1).y, 0, 1e-5, 0);
-    th_assert_near(position_of(&f, 1).y, 0.9 + RECOVERY * (0.1 - SLOP), 1e-5, 0);
-    assert_true(impulse_of(&f, 0, 0, 0).w > 0);
+    double rise = position_of(&f, 1).y - 0.9;
+    print_message("  pushed out %.4f m of 0.1 in a step\n", rise);
+    assert_true(rise > 0.01 && rise <= PUSH_SPEED * DT + 1e-6);
     fixture_destroy(&f);
 }
 
@@ -803,23 +830,23 @@ static void test_solve_friction(void** state)
         const float mu = 0.5f;
         set_contact(&f, 0, 0, 0, 1, th_v3(0, 1, 0), mu, 0, 4, corners);
         double g = -tb_world_get_gravity(w).y;
-        solver_step(&f, 1, 0, 2, 30);
+        solver_step(&f, 1, 0, 2, SUBSTEPS, 8);
         tb_vec3 v = velocity_of(&f, 1), spin = spin_of(&f, 1);
         double expected = speeds[i] > mu * g * DT ? speeds[i] - mu * g * DT : 0;
         th_assert_near(v.x, expected, 1e-3, 1e-3);
         th_assert_near(v.y, 0, 1e-3, 0);
-        th_assert_near(v.z, 0, 1e-6, 0);
+        th_assert_near(v.z, 0, 1e-5, 0);
         th_assert_near(spin.x, 0, 1e-3, 0);
         th_assert_near(spin.z, 0, 2e-3, 0);
         double normal = 0;
-        for (int k = 0; k < 4; k++) normal += impulse_of(&f, 0, 0, (uint32_t)k).x;
+        for (int k = 0; k < 4; k++) normal += impulse_of(&f, 0, 0, (uint32_t)k).w;
         th_assert_near(normal, mass_of(&f, 1) * g * DT, 0, 2e-3);
         fixture_destroy(&f);
     }
 }
 
 /* Three spheres stacked on the ground: two colours alternate over the chain; the contacts
- * carry 3, 2 and 1 times m g dt. The same step run twice gives bit-identical results. */
+ * carry 3, 2 and 1 times m g dt over the step. The same step run twice gives bit-identical results. */
 static void stack_step(fixture* f, uint32_t iterations)
 {
     for (uint32_t i = 1; i <= 3; i++) {
@@ -831,7 +858,7 @@ static void stack_step(fixture* f, uint32_t iterations)
         tb_gpu_vec4 point = { 0, 0.5f + (float)p, 0, 0 };
         set_contact(f, 1, p, p, p + 1, th_v3(0, 1, 0), 0.5f, 0, 1, &point);
     }
-    solver_step(f, 3, 1, 4, iterations);
+    solver_step(f, 3, 1, 4, SUBSTEPS, iterations);
 }
 
 static void test_solve_stack_deterministic(void** state)
@@ -844,17 +871,19 @@ static void test_solve_stack_deterministic(void** state)
     for (int i = 1; i <= 3; i++) defs[i] = th_dynamic_def(ball, th_v3(0, (float)i, 0));
     fixture_init_defs(&f, w, defs, 4, 1, 4);
     double g = -tb_world_get_gravity(w).y, mgdt = mass_of(&f, 1) * g * DT;
-    stack_step(&f, 40);
+    stack_step(&f, 8);
     assert_int_equal(counters_of(&f)->solver.x, 2);
-    for (uint32_t p = 0; p < 3; p++) th_assert_near(impulse_of(&f, 1, p, 0).x, (3 - p) * mgdt, 0, 1e-3);
+    /* Started cold, the soft contacts give a little in the first substeps while they take the
+     * load (the spheres sink into them), so they carry the weight within a few per cent. */
+    for (uint32_t p = 0; p < 3; p++) th_assert_near(impulse_of(&f, 1, p, 0).w, (3 - p) * mgdt, 0, 0.05);
     tb_vec3 first[4];
     tb_gpu_manifold manifolds[3];
     for (uint32_t i = 1; i <= 3; i++) {
-        th_assert_near(velocity_of(&f, i).y, 0, 1e-4, 0);
+        th_assert_near(velocity_of(&f, i).y, 0, 1e-2, 0);   /* still settling into the springs */
         first[i] = position_of(&f, i);
     }
     memcpy(manifolds, &manifolds_of(&f)[f.capacity], sizeof manifolds);
-    stack_step(&f, 40);
+    stack_step(&f, 8);
     for (uint32_t i = 1; i <= 3; i++) {
         tb_vec3 x = position_of(&f, i);
         assert_memory_equal(&x, &first[i], sizeof x);
@@ -885,14 +914,14 @@ static void test_solve_tail_and_abort(void** state)
             set_contact(&f, 0, k, k, POSTS, th_v3(0, 1, 0), 0.5f, 0, 1, &point);
         }
         double g = -tb_world_get_gravity(w).y;
-        solver_step(&f, POSTS, 0, rounds[i], 30);
+        solver_step(&f, POSTS, 0, rounds[i], SUBSTEPS, 5);
         const tb_gpu_counters* c = counters_of(&f);
         tb_vec3 v = velocity_of(&f, POSTS);
         if (rounds[i] == TB_MAX_COLOURS) {
             assert_int_equal(c->state.x, 0);
             assert_int_equal(c->solver.y, POSTS - TB_MAX_COLOURS);
             double normal = 0;
-            for (uint32_t k = 0; k < POSTS; k++) normal += impulse_of(&f, 0, k, 0).x;
+            for (uint32_t k = 0; k < POSTS; k++) normal += impulse_of(&f, 0, k, 0).w;
             th_assert_near(normal, mass_of(&f, POSTS) * g * DT, 0, 1e-3);
             th_assert_near(v.y, 0, 1e-4, 0);
         } else {
@@ -918,7 +947,7 @@ int main(void)
         cmocka_unit_test(test_solve_resting_sphere),
         cmocka_unit_test(test_solve_restitution),
         cmocka_unit_test(test_solve_speculative),
-        cmocka_unit_test(test_solve_split_impulse),
+        cmocka_unit_test(test_solve_push_out),
         cmocka_unit_test(test_solve_friction),
         cmocka_unit_test(test_solve_stack_deterministic),
         cmocka_unit_test(test_solve_tail_and_abort),

@@ -22,7 +22,7 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 96);
+    assert_int_equal(sizeof(tb_gpu_params), 128);
     assert_int_equal(offsetof(tb_gpu_params, capacity), 64);
     assert_int_equal(offsetof(tb_gpu_params, contact), 80);
     assert_int_equal(offsetof(tb_gpu_params, soft), 96);

@@ -253,7 +253,8 @@ TB_STRUCT(tb_gpu_constraint_point) {
     TB_VEC4 rb;               /* xyz point relative to b's centre, w adjusted separation: the
                                  separation minus dot(rb - ra, normal) (m) */
     TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z relative normal velocity
-                                 before the step (m/s, for restitution), w unused */
+                                 before the step (m/s), w the most negative one the solve has
+                                 seen (restitution answers the faster approach) */
 };
 
 /* Indexed like the pairs of this step's half (constraints[p] for pairs[half base + p]). */

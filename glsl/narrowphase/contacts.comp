@@ -47,6 +47,32 @@ uint np_collide(np_target t, np_body first, np_body second, float margin, out ve
     return np_hull_hull(t, first, second, margin, normal);
 }
 
+// How far body i may carry any of its points within the step: its motion (velocity with
+// this step's gravity) plus the reach of its turn.
+vec3 step_motion(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return vec3(0.0);
+    float dt = params.gravity.w;
+    return (body_linvel[i].xyz + params.gravity.xyz * (body_inv_inertia[i].w * dt)) * dt;
+}
+
+float step_turn_reach(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return 0.0;
+    float angle = min(length(body_angvel[i].xyz) * params.gravity.w, params.limits.x);
+    return angle * length(shapes[body_info[i].x].aabb_half.xyz);
+}
+
+// Speculative reach of a pair: the contact margin plus how far the two may close in within
+// the step. Points up to that far apart are kept (speculative, separation > 0); the solver
+// lets a gap close no faster than it would within a substep, so a fast body lands on a
+// surface instead of passing through it (while its path within the step is straight).
+float pair_margin(uint a, uint b)
+{
+    return params.contact.x + length(step_motion(a) - step_motion(b)) + step_turn_reach(a) +
+           step_turn_reach(b);
+}
+
 // Writes the manifold of pair p; returns its point count.
 uint pair_contacts(uint p)
 {
@@ -61,7 +87,7 @@ uint pair_contacts(uint p)
     vec3 normal;
     // The separating axis a hull pair caches for the next step; other pairs have none.
     manifolds[p].axis = uvec4(0u);
-    uint count = np_collide(t, first, second, params.contact.x, normal);
+    uint count = np_collide(t, first, second, pair_margin(a, b), normal);
     np_finish(t, count, swapped ? -normal : normal, a, b,
               sqrt(body_a.material.x * body_b.material.x), max(body_a.material.y, body_b.material.y));
     return count;

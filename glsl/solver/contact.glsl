@@ -105,6 +105,9 @@ void solve_contact(uint p, bool relax)
     for (uint k = 0u; k < v.count; k++) {
         vec3 ra = v.c.p[k].ra.xyz, rb = v.c.p[k].rb.xyz;
         float vn = dot(relative_velocity(v.a, v.b, ra, rb), v.n);
+        // The fastest approach, for restitution: a body that lands within the step has
+        // gained speed since the step began.
+        if (vn < v.c.p[k].mass.w) constraints[p].p[k].mass.w = vn;
         float total = max(impulse[k].x + normal_increment(v, k, vn, impulse[k].x, relax), 0.0);
         apply_impulse(v.a, v.b, ra, rb, v.n * (total - impulse[k].x));
         impulse[k].x = total;
@@ -126,15 +129,16 @@ void solve_contact(uint p, bool relax)
     contact_store(v);
 }
 
-// After the substeps: a point that was approaching faster than the restitution threshold
-// before the step (prepare kept that speed) and took load leaves at e times that speed.
+// After the substeps: a point that approached faster than the restitution threshold (the
+// fastest relative normal velocity the solve saw, or the one before the step) and took load
+// leaves at e times that speed.
 void restitution_contact(uint p)
 {
     contact_view v = contact_load(p);
     float e = v.c.tangent2.w;
     if (e == 0.0) return;
     for (uint k = 0u; k < v.count; k++) {
-        float before = v.c.p[k].mass.z;
+        float before = min(v.c.p[k].mass.z, v.c.p[k].mass.w);
         vec4 impulse = manifolds[p].impulse[k];
         if (before > -params.contact.y || impulse.w == 0.0) continue;
         vec3 ra = v.c.p[k].ra.xyz, rb = v.c.p[k].rb.xyz;

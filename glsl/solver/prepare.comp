@@ -45,7 +45,7 @@ void main()
         c.p[k].ra = vec4(ra, solver_effective_mass(a, b, ra, rb, n));
         c.p[k].rb = vec4(rb, s - dot(rb - ra, n));
         c.p[k].mass = vec4(solver_effective_mass(a, b, ra, rb, t1),
-                           solver_effective_mass(a, b, ra, rb, t2), vn, 0.0);
+                           solver_effective_mass(a, b, ra, rb, t2), vn, vn);
     }
     constraints[p] = c;
 }

@@ -18,15 +18,17 @@ static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu
     tb_vec3 n = { m->normal.x, m->normal.y, m->normal.z };
     tb_vec3 t1 = { c->tangent1.x, c->tangent1.y, c->tangent1.z };
     tb_vec3 t2 = { c->tangent2.x, c->tangent2.y, c->tangent2.z };
+    float substeps = (float)w->substeps;
     for (uint32_t k = 0; k < points && k < room; k++) {
         const tb_gpu_vec4* p = &m->point[k];
         const tb_gpu_vec4* j = &m->impulse[k];
         out[k] = (tb_contact){
             .a = id_of(w, m->info.y), .b = id_of(w, m->info.z),
             .point = { p->x, p->y, p->z }, .normal = n, .separation = p->w,
-            .normal_impulse = j->x,
-            .friction_impulse = { j->y * t1.x + j->z * t2.x, j->y * t1.y + j->z * t2.y,
-                                  j->y * t1.z + j->z * t2.z },
+            .normal_impulse = j->w,
+            .friction_impulse = { substeps * (j->y * t1.x + j->z * t2.x),
+                                  substeps * (j->y * t1.y + j->z * t2.y),
+                                  substeps * (j->y * t1.z + j->z * t2.z) },
             .feature = (&m->feature.x)[k],
         };
     }

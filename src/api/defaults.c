@@ -15,7 +15,7 @@ tb_world_def tb_default_world_def(void)
     def.solver_iterations = 1;
     def.contact_margin = 0.02f;
     def.restitution_threshold = 0.5f;
-    def.contact_hertz = 0.0f;                    /* 0: a quarter of the substep rate */
+    def.contact_hertz = 60.0f;
     def.contact_damping_ratio = 10.0f;
     def.contact_push_speed = 3.0f;
     def.internal_cookie = TB_DEF_COOKIE;

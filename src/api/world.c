@@ -211,7 +211,7 @@ tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
  * column already rocks itself over); 0 takes the cap (twice as stiff against static
  * bodies, which cannot give way), written as the bias rate, mass
  * scale and impulse scale the solve uses (see glsl/solver/contact.glsl). */
-static tb_gpu_vec4 contact_softness(const tb_world* w, float h, double scale)
+tb_gpu_vec4 tb_contact_softness(const tb_world* w, float h, double scale)
 {
     if (!(h > 0)) return (tb_gpu_vec4){ 0, 1, 0, 0 };
     double cap = 0.25 / h;
@@ -237,8 +237,8 @@ static void write_params(tb_world* w, float dt)
                                   w->solver_iterations };
     p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold,
                                 w->contact_push_speed, 0 };
-    p->soft = contact_softness(w, dt / (float)w->substeps, 1.0);
-    p->soft_static = contact_softness(w, dt / (float)w->substeps, 2.0);
+    p->soft = tb_contact_softness(w, dt / (float)w->substeps, 1.0);
+    p->soft_static = tb_contact_softness(w, dt / (float)w->substeps, 2.0);
 }
 
 tb_result tb_world_prepare_shapes(tb_world* w)

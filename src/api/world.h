@@ -138,6 +138,9 @@ tb_result tb_hull_table_prepare(tb_world* w);
 VkDeviceSize tb_hull_table_upload_bytes(const tb_world* w);
 void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer);
 
+/// The soft contact of a substep h (tb_gpu_params.soft), `scale` times as stiff.
+tb_gpu_vec4 tb_contact_softness(const tb_world* w, float h, double scale);
+
 /* step.c */
 tb_result tb_step_kernels_create(tb_world* w);
 void tb_step_kernels_destroy(tb_world* w);
