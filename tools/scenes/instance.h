@@ -55,6 +55,9 @@ tb_result mixed_build(tb_world* world, const scene_params* params, scene_instanc
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
 
+/* hulls.c */
+tb_result hulls_build(tb_world* world, const scene_params* params, scene_instance** out);
+
 /* stacks.c */
 tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result pyramid_build(tb_world* world, const scene_params* params, scene_instance** out);

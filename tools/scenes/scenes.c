@@ -233,6 +233,9 @@ static const scene scenes[] = {
     { "pyramid", "2-D pyramid of unit boxes on a plane, base b with b(b+1)/2 <= N; checks "
                  "drift, nan, fallen", 1.0f / 60.0f, 55, 1000,
       pyramid_build, stack_check, instance_free },
+    { "hulls", "N random convex hulls (8-32 vertices) dropped into a walled box; checks "
+               "nan, escaped, max_penetration", 1.0f / 60.0f, 4000, 360,
+      hulls_build, pile_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))

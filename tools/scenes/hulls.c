@@ -1,13 +1,5 @@
 /* Hull pile: N convex hulls poured into the pile scenes' walled container.
  *
- * PENDING: tb_shape_create_hull is declared in include/tumble.h but not implemented yet, so
- * this file would not link. Rename it to hulls.c once the hull shapes land, declare
- * hulls_build in instance.h and add to scenes[] in scenes.c:
- *
- *     { "hulls", "N random convex hulls (8-32 vertices) dropped into a walled box; checks "
- *                "nan, escaped, max_penetration", 1.0f / 60.0f, 4000, 360,
- *       hulls_build, pile_check, instance_free },
- *
  * HULL_SHAPES hull shapes are shared among the bodies (body i uses shape i % HULL_SHAPES),
  * as a game shares a few rock meshes among many rocks. Each shape is the hull of 8-32
  * random points on a jittered ellipsoid (radius scaled by 1 +- HULL_JITTER), so hulls
