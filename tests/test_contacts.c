@@ -100,6 +100,44 @@ static void test_restitution_bounce_height(void** state)
     }
 }
 
+/* A fast body does not tunnel: a sphere, a box and a hull at 100 m/s (1.7 m per step, 34
+ * times the thickness of a 5 cm wall) stop on the wall's face. Speculative contacts reach as
+ * far as a body moves in the step, so this holds at any speed along a straight path. */
+static void test_fast_bodies_stop_at_thin_wall(void** state)
+{
+    (void)state;
+    tb_world_def wd = tb_default_world_def();
+    wd.gravity = th_v3(0, 0, 0);
+    tb_world* w = th_world_create(&wd);
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id wall, ball, cube, rock;
+    th_assert_ok(tb_shape_create_box(w, &sd, th_v3(0.025f, 5, 5), &wall));
+    th_assert_ok(tb_shape_create_sphere(w, &sd, 0.1f, &ball));
+    th_assert_ok(tb_shape_create_box(w, &sd, th_v3(0.1f, 0.1f, 0.1f), &cube));
+    tb_vec3 pts[8];
+    for (int i = 0; i < 8; i++)
+        pts[i] = th_v3(i & 1 ? 0.1f : -0.1f, i & 2 ? 0.12f : -0.1f, i & 4 ? 0.1f : -0.08f);
+    th_assert_ok(tb_shape_create_hull(w, &sd, pts, 8, &rock));
+    tb_body_def d = th_static_def(wall, th_v3(0, 0, 0));
+    th_body(w, &d);
+    const tb_shape_id shapes[3] = { ball, cube, rock };
+    tb_body_id ids[3];
+    for (int i = 0; i < 3; i++) {
+        d = th_dynamic_def(shapes[i], th_v3(-3.05f, -2.0f + 2.0f * i, 0));
+        d.linear_velocity = th_v3(100, 0, 0);
+        ids[i] = th_body(w, &d);
+    }
+    for (int step = 0; step < 10; step++) th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+    for (int i = 0; i < 3; i++) {
+        tb_vec3 x;
+        th_read_pose(w, ids[i], &x, NULL);
+        print_message("  body %d: x %.4f, vx %.4f\n", i, x.x, velocity_of(w, ids[i]).x);
+        assert_true(x.x < -0.025f - 0.08f && x.x > -0.025f - 0.2f);
+        assert_true(velocity_of(w, ids[i]).x <= 0.01f);
+    }
+    th_world_destroy(w);
+}
+
 typedef struct incline { tb_world* w; tb_body_id box; tb_vec3 down; } incline;
 
 /* A box of mu 0.5 at rest on a static slab tilted by `degrees` about z. */
@@ -209,6 +247,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_sphere_rests_on_plane),
         cmocka_unit_test(test_restitution_bounce_height),
+        cmocka_unit_test(test_fast_bodies_stop_at_thin_wall),
         cmocka_unit_test(test_incline_sticks_below_atan_mu),
         cmocka_unit_test(test_incline_slides_above_atan_mu),
         cmocka_unit_test(test_pour_spheres_settles_deterministically),
