@@ -120,7 +120,10 @@ typedef struct tb_world_def {
     /// Damping ratio of that spring; above 1 it is overdamped (no bounce from pushing out).
     /// Default 10. >= 0.
     float contact_damping_ratio;
-    /// Fastest speed, m/s, at which penetration is pushed out. Default 3. >= 0.
+    /// Fastest speed, m/s, at which penetration is pushed out. In a deep pile the push of
+    /// each layer adds up (one relax sweep cannot take it all back), so a faster push can
+    /// launch the top of the pile: a million-box pile erupts at 3 m/s, not at 1. Default 1.
+    /// >= 0.
     float contact_push_speed;
     /// Device choice: an index into the Vulkan device list, or a case-insensitive substring
     /// of the device name. NULL: the TUMBLE_DEVICE environment variable, else a discrete

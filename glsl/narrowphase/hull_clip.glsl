@@ -2,10 +2,10 @@
 //
 // Face axis (Sutherland-Hodgman clipping, as in Bullet 3's GPU pipeline, Coumans GDC 2013):
 // the reference face is the face of the axis; the incident face is the other hull's face
-// most anti-parallel to the reference normal. The incident polygon is clipped by the side
-// planes of the reference face (one per reference edge, not by the reference plane
-// itself); the corners below the reference plane plus the margin are the candidates, more
-// than four are reduced (hull.glsl), and each is written midway between the surfaces.
+// most anti-parallel to the reference normal among those around its deepest vertex. The
+// incident polygon is clipped by the side planes of the reference face (one per reference
+// edge, not by the reference plane itself); the corners below the reference plane plus the
+// margin are the candidates, more than four are reduced (hull.glsl), and each is written midway between the surfaces.
 // Everything happens in the reference hull's body frame.
 //
 // Every polygon corner carries the features that made it, its clip feature: an incident
@@ -84,16 +84,42 @@ vec3 np_clip_onto_face(np_hull h, uvec2 ref, vec3 normal, vec3 x)
     return x;
 }
 
-// The face of h most anti-parallel to n (h's frame); the first of equals.
-uint np_incident_face(np_hull h, vec3 n)
+// The vertex of h deepest along -n (h's frame); the first of equals.
+uint np_support_vertex(np_hull h, vec3 n)
 {
-    uint face = 0u;
+    uint best = 0u;
     float least = NP_BIG;
-    for (uint f = 0u; f < h.faces; f++) {
-        float c = dot(np_hull_plane(h, f).xyz, n);
+    for (uint v = 0u; v < h.vertices; v++) {
+        float c = dot(np_hull_vertex(h, v), n);
         if (c < least) {
             least = c;
-            face = f;
+            best = v;
+        }
+    }
+    return best;
+}
+
+// The incident face: of the faces around h's deepest vertex along -n, the one most
+// anti-parallel to n (h's frame; the first of equals). Among all faces the most anti-
+// parallel one can miss that vertex (a hull standing on a corner whose faces are steep),
+// and the corner would then sink into the reference face unseen. The faces around a vertex
+// are those left and right of its edges.
+uint np_incident_face(np_hull h, vec3 n)
+{
+    uint deepest = np_support_vertex(h, n);
+    uint face = 0u;
+    float least = NP_BIG;
+    for (uint e = 0u; e < h.edges; e++) {
+        uvec2 ends = np_hull_edge_vertices(h, e);
+        if (ends.x != deepest && ends.y != deepest) continue;
+        uvec2 sides = np_hull_edge_faces(h, e);
+        for (uint k = 0u; k < 2u; k++) {
+            uint f = k == 0u ? sides.x : sides.y;
+            float c = dot(np_hull_plane(h, f).xyz, n);
+            if (c < least || (c == least && f < face)) {
+                least = c;
+                face = f;
+            }
         }
     }
     return face;

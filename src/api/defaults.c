@@ -17,7 +17,7 @@ tb_world_def tb_default_world_def(void)
     def.restitution_threshold = 0.5f;
     def.contact_hertz = 60.0f;
     def.contact_damping_ratio = 10.0f;
-    def.contact_push_speed = 3.0f;
+    def.contact_push_speed = 1.0f;
     def.internal_cookie = TB_DEF_COOKIE;
     return def;
 }
