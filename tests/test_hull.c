@@ -170,7 +170,8 @@ static double max_depth(const tb_hull* h, uint32_t f, uint32_t g)
 /* Everything a hull of the cloud p must satisfy, in the principal frame. */
 static void check_hull(const tb_hull* h, const float (*p)[3], int n)
 {
-    double eps = cloud_eps(p, n), tol = (strict_convexity ? 4 : 6) * eps;
+    /* A noisy cloud may be built at up to 16 times the tolerance (tb_hull_build retries). */
+    double eps = cloud_eps(p, n), tol = (strict_convexity ? 4 : 6 * 16) * eps;
     assert_int_equal((int)h->vertex_count - (int)h->edge_count + (int)h->face_count, 2);
     for (uint32_t i = 0; i < h->index_count; i++) assert_true(h->indices[i] < h->vertex_count);
     check_faces(h, tol);
@@ -184,11 +185,12 @@ static void check_hull(const tb_hull* h, const float (*p)[3], int n)
             plane(h, f, nn, &d);
             if (dot3(nn, x) - d > tol) fail_msg("point %d is %g outside face %u (tol %g)", i, dot3(nn, x) - d, f, tol);
         }
-        for (int k = 0; k < 3; k++) {
-            assert_true(x[k] >= h->aabb_min[k] - tol && x[k] <= h->aabb_max[k] + tol);
-        }
+        for (int k = 0; k < 3; k++)
+            if (!(x[k] >= h->aabb_min[k] - tol && x[k] <= h->aabb_max[k] + tol))
+                fail_msg("point %d is outside the box on axis %d: %g not in [%g, %g] (tol %g)", i,
+                         k, x[k], (double)h->aabb_min[k], (double)h->aabb_max[k], tol);
     }
-    th_assert_near(volume_from_faces(h), h->volume, 0, 1e-5);
+    th_assert_near(volume_from_faces(h), h->volume, 0, strict_convexity ? 1e-5 : 1e-4);
     for (uint32_t e = 0; e < h->edge_count; e++) {
         uint32_t l = h->edges[e].left, r = h->edges[e].right;
         double bend = fmax(max_depth(h, l, r), max_depth(h, r, l));
@@ -549,8 +551,8 @@ static void test_hull_box(void** state)
 
 /* Box face grids, scaled, rotated and moved, with noise from far below the tolerance to far
  * above it. Noise about as large as the tolerance is the hard case: the hull must still be
- * valid (convex within tolerance, closed, every point inside), though it may merge less,
- * or the build may refuse it as too noisy, but never hand back a wrong hull. */
+ * built and valid (convex within tolerance, closed, every point inside), though it may
+ * merge less; the build retries at a coarser tolerance rather than refuse it. */
 static void test_noisy_box_grids(void** state)
 {
     (void)state;
@@ -581,9 +583,7 @@ static void test_noisy_box_grids(void** state)
         tb_hull h;
         char err[256] = "";
         if (tb_hull_build(&pts[0][0], (uint32_t)n, &h, err, sizeof err) != 0) {
-            int limit = strstr(err, "GPU limit") != NULL, noisy = strstr(err, "noisy") != NULL;
-            if (!limit && !(noisy && amp >= 5e-7f && amp <= 5e-5f))
-                fail_msg("trial %d (noise %g): %s", trial, (double)amp, err);
+            if (!strstr(err, "GPU limit")) fail_msg("trial %d (noise %g): %s", trial, (double)amp, err);
             continue;
         }
         check_hull(&h, (const float (*)[3])pts, n);
@@ -591,7 +591,8 @@ static void test_noisy_box_grids(void** state)
         built++;
     }
     strict_convexity = 1;
-    assert_true(built > 1900);
+    print_message("  %d of 2000 noisy clouds built\n", built);
+    assert_true(built > 1990);   /* all but clouds beyond the GPU limits */
 }
 
 int main(void)

@@ -175,13 +175,14 @@ static void add_fallers(tb_world* w, tb_shape_id s, faller* f, int first, int co
 static void step_fallers(tb_world* w, faller* f, int count, int steps)
 {
     const tb_vec3 g = tb_world_get_gravity(w);
-    const double gv[3] = { g.x, g.y, g.z }, dt = DT;
+    const int substeps = (int)tb_default_world_def().substeps;
+    const double gv[3] = { g.x, g.y, g.z }, h = (double)DT / substeps;
     th_assert_ok(tb_world_step_n(w, DT, (uint32_t)steps));
     for (int i = 0; i < count; i++)
-        for (int k = 0; k < steps; k++)
+        for (int k = 0; k < steps * substeps; k++)
             for (int a = 0; a < 3; a++) {
-                f[i].v[a] += gv[a] * dt;
-                f[i].x[a] += f[i].v[a] * dt;
+                f[i].v[a] += gv[a] * h;
+                f[i].x[a] += f[i].v[a] * h;
             }
 }
 
@@ -373,12 +374,14 @@ static void test_bulk_create_read_back(void** state)
     assert_int_equal(tb_world_body_ids(w, listed, N + 1), N);
     for (int i = 1; i < N; i++) assert_true(listed[i].index1 > listed[i - 1].index1);
     for (int i = 0; i < N; i++) assert_true(tb_body_is_valid(w, listed[i]));
-    /* one step later every body has fallen by g dt^2 (from rest) */
+    /* one step of S substeps later every body has fallen by g dt^2 (S + 1) / (2 S) */
     th_assert_ok(tb_world_step(w, DT));
     const tb_vec3 g = tb_world_get_gravity(w);
+    const double subs = tb_default_world_def().substeps;
     th_assert_ok(tb_world_read_transforms(w, ids, N, p, NULL));
     for (int i = 0; i < N; i++)
-        th_assert_near(p[i].y, defs[i].position.y + (double)g.y * DT * DT, 1e-4, 0);
+        th_assert_near(p[i].y, defs[i].position.y + (double)g.y * DT * DT * (subs + 1) / (2 * subs),
+                       1e-4, 0);
     th_world_destroy(w);
 }
 

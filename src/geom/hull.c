@@ -47,24 +47,11 @@ static int check_limits(const tb_hull_mesh* m, char* error, size_t error_size)
     return 0;
 }
 
-/* The plane of a polygon by Newell's method (the normal is the sum of the projected
- * areas, robust for polygons that are planar only within tolerance), through the mean of
- * its vertices. */
+/* The unit plane of face f (tb_hull_mesh_face_normal) in floats. */
 static void face_plane(const tb_hull_mesh* m, uint32_t f, float plane[4])
 {
-    const uint32_t* loop = m->indices + m->faces[f].first;
-    uint32_t count = m->faces[f].count;
-    double c[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
-    for (uint32_t i = 0; i < count; i++)
-        for (int k = 0; k < 3; k++) c[k] += m->vertices[loop[i]][k] / count;
-    for (uint32_t i = 0; i < count; i++) {
-        const double* a = m->vertices[loop[i]];
-        const double* b = m->vertices[loop[(i + 1) % count]];
-        for (int k = 0; k < 3; k++) {
-            int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-            n[k] += (a[k1] - c[k1]) * (b[k2] - c[k2]) - (a[k2] - c[k2]) * (b[k1] - c[k1]);
-        }
-    }
+    double n[3], c[3];
+    tb_hull_mesh_face_normal(m, f, n, c);
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; k++) plane[k] = (float)(n[k] / len);
     plane[3] = (float)((n[0] * c[0] + n[1] * c[1] + n[2] * c[2]) / len);
@@ -228,7 +215,12 @@ int tb_hull_build(const float* xyz, uint32_t count, tb_hull* out, char* error, s
     }
     double eps = centred_points(xyz, count, p, mid);
     tb_hull_mesh mesh;
-    int rc = tb_quickhull((const double (*)[3])p, count, eps, &mesh, error, error_size);
+    /* Points noisy at about the tolerance can make regions flat within it yet not convex;
+     * a coarser tolerance (up to 16 times, still under 2e-5 of the cloud's extent) merges the
+     * noise into the faces instead of refusing the cloud. */
+    int rc = TB_QUICKHULL_NOISY;
+    for (double scale = 1; rc == TB_QUICKHULL_NOISY && scale <= 16; scale *= 4)
+        rc = tb_quickhull((const double (*)[3])p, count, eps * scale, &mesh, error, error_size);
     free(p);
     if (rc) return -1;
     hull_mass mass = principal_frame(&mesh, mid);

@@ -18,9 +18,17 @@ typedef struct tb_hull_mesh {
 
 void tb_hull_mesh_free(tb_hull_mesh* mesh);
 
+/* Face f's plane by Newell's method (the normal is the sum of the projected areas, robust
+ * for polygons planar only within tolerance) through the mean c of its corners: writes n
+ * unnormalised (its length is twice the face's area) and c. */
+void tb_hull_mesh_face_normal(const tb_hull_mesh* mesh, uint32_t f, double n[3], double c[3]);
+
 /* Quickhull of n finite points, with coplanar faces merged and vertices that are not
  * corners of the merged polyhedron removed. eps is the distance below which points count
- * as on a plane. Returns 0, or -1 with a sentence in error (mesh then left empty). */
+ * as on a plane. Returns 0, or with a sentence in error (mesh then left empty)
+ * TB_QUICKHULL_NOISY when the points are too noisy at the scale of eps to give a consistent
+ * hull (a larger eps may), or -1 on anything else (degenerate input, no memory). */
+#define TB_QUICKHULL_NOISY (-2)
 int tb_quickhull(const double (*points)[3], uint32_t n, double eps, tb_hull_mesh* mesh,
                  char* error, size_t error_size);
 

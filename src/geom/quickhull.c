@@ -567,25 +567,33 @@ static int qh_polygons(qh* q, tb_hull_mesh* mesh, int merge)
     return qh_compact(q, mesh);
 }
 
+void tb_hull_mesh_face_normal(const tb_hull_mesh* m, uint32_t f, double n[3], double c[3])
+{
+    const uint32_t* loop = m->indices + m->faces[f].first;
+    uint32_t count = m->faces[f].count;
+    for (int k = 0; k < 3; k++) c[k] = n[k] = 0;
+    for (uint32_t i = 0; i < count; i++)
+        for (int k = 0; k < 3; k++) c[k] += m->vertices[loop[i]][k] / count;
+    for (uint32_t i = 0; i < count; i++) {
+        double a[3], b[3], x[3];
+        v3_sub(m->vertices[loop[i]], c, a);
+        v3_sub(m->vertices[loop[(i + 1) % count]], c, b);
+        v3_cross(a, b, x);
+        for (int k = 0; k < 3; k++) n[k] += x[k];
+    }
+}
+
 /* Whether the merged mesh is convex within 2 eps: every vertex on or below every face's
  * plane (Newell normal through the mean of the face's corners), on its own faces' planes,
- * and no face turning the wrong way at a corner. Merging can fail this where the points are noisy at about the scale of eps
- * (regions that are flat within eps yet not convex); the unmerged triangles never do. */
+ * and no face turning the wrong way at a corner. Merging can fail this where the
+ * points are noisy at about the scale of eps (regions that are flat within eps yet not convex); the unmerged triangles never do. */
 static int qh_valid(const tb_hull_mesh* m, double eps)
 {
     for (uint32_t f = 0; f < m->face_count; f++) {
         const uint32_t* loop = m->indices + m->faces[f].first;
         uint32_t count = m->faces[f].count;
-        double c[3] = { 0, 0, 0 }, n[3] = { 0, 0, 0 };
-        for (uint32_t i = 0; i < count; i++)
-            for (int k = 0; k < 3; k++) c[k] += m->vertices[loop[i]][k] / count;
-        for (uint32_t i = 0; i < count; i++) {
-            double a[3], b[3], x[3];
-            v3_sub(m->vertices[loop[i]], c, a);
-            v3_sub(m->vertices[loop[(i + 1) % count]], c, b);
-            v3_cross(a, b, x);
-            for (int k = 0; k < 3; k++) n[k] += x[k];
-        }
+        double c[3], n[3];
+        tb_hull_mesh_face_normal(m, f, n, c);
         double len = sqrt(v3_dot(n, n));
         if (!(len > 0)) return 0;
         for (int k = 0; k < 3; k++) n[k] /= len;
@@ -666,5 +674,5 @@ int tb_quickhull(const double (*points)[3], uint32_t n, double eps, tb_hull_mesh
         snprintf(error, error_size, "could not build a consistent convex hull from these points "
                  "(%s)", rc == -2 ? "the points are too noisy at the scale of the tolerance"
                                   : "coplanar faces do not merge into a simple polygon");
-    return rc ? -1 : 0;
+    return rc == -2 || rc == -4 ? TB_QUICKHULL_NOISY : rc ? -1 : 0;
 }

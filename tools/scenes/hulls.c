@@ -88,16 +88,5 @@ tb_result hulls_build(tb_world* w, const scene_params* params, scene_instance** 
         d.rotation = random_rotation(&rng);
         defs[i] = d;
     }
-    /* Dynamic bodies first, so their ids lead the instance's list. */
-    if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
-    if (r == TB_OK) r = pile_build_container(w, &l);
-    free(defs);
-    if (r != TB_OK) {
-        instance_free(inst);
-        return r;
-    }
-    inst->box_min = (tb_vec3){ -l.half_width, 0.0f, -l.half_width };
-    inst->box_max = (tb_vec3){ l.half_width, l.height, l.half_width };
-    *out = inst;
-    return TB_OK;
+    return pile_finish(w, &l, defs, n, r, inst, out);
 }

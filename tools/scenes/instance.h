@@ -47,6 +47,10 @@ typedef struct pile_layout {
 pile_layout pile_layout_for(uint32_t n);
 /// Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw].
 tb_result pile_build_container(tb_world* world, const pile_layout* layout);
+/// The end of a pile's build: creates the n bodies of `defs` (then frees it), then the
+/// container, and hands the instance over; on any failure (r included) frees it instead.
+tb_result pile_finish(tb_world* world, const pile_layout* layout, tb_body_def* defs, uint32_t n,
+                      tb_result r, scene_instance* inst, scene_instance** out);
 /// Jittered start of body i: cells of one layer first, layers upwards.
 tb_vec3 pile_grid_slot(const pile_layout* layout, uint32_t i, uint32_t* rng);
 tb_result spheres_build(tb_world* world, const scene_params* params, scene_instance** out);

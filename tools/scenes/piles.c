@@ -65,6 +65,23 @@ tb_vec3 pile_grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
     return p;
 }
 
+tb_result pile_finish(tb_world* w, const pile_layout* l, tb_body_def* defs, uint32_t n,
+                      tb_result r, scene_instance* inst, scene_instance** out)
+{
+    /* Dynamic bodies first, so their ids lead the instance's list. */
+    if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
+    if (r == TB_OK) r = pile_build_container(w, l);
+    free(defs);
+    if (r != TB_OK) {
+        instance_free(inst);
+        return r;
+    }
+    inst->box_min = (tb_vec3){ -l->half_width, 0.0f, -l->half_width };
+    inst->box_max = (tb_vec3){ l->half_width, l->height, l->half_width };
+    *out = inst;
+    return TB_OK;
+}
+
 static tb_result pile_build(tb_world* w, const scene_params* params, pile_kind kind,
                             scene_instance** out)
 {
@@ -86,18 +103,7 @@ static tb_result pile_build(tb_world* w, const scene_params* params, pile_kind k
         d.position = pile_grid_slot(&l, i, &rng);
         defs[i] = d;
     }
-    /* Dynamic bodies first, so their ids lead the instance's list. */
-    if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
-    if (r == TB_OK) r = pile_build_container(w, &l);
-    free(defs);
-    if (r != TB_OK) {
-        instance_free(inst);
-        return r;
-    }
-    inst->box_min = (tb_vec3){ -l.half_width, 0.0f, -l.half_width };
-    inst->box_max = (tb_vec3){ l.half_width, l.height, l.half_width };
-    *out = inst;
-    return TB_OK;
+    return pile_finish(w, &l, defs, n, r, inst, out);
 }
 
 tb_result spheres_build(tb_world* w, const scene_params* params, scene_instance** out)
