@@ -1,4 +1,5 @@
-/* The narrowphase kernel (narrowphase/contacts) driven alone, without the rest of the step.
+/* The narrowphase's two kernels (narrowphase/contacts, then hull_points) driven alone,
+ * without the rest of the step.
  *
  * Bodies are made through the public API and uploaded with tb_world_flush; the test owns
  * the other buffers the kernel uses (counters, body_pairs, pairs and manifolds with both
@@ -63,7 +64,7 @@ typedef struct thull {
 typedef struct rig {
     tb_world* w;
     uint32_t cap;                 /* pairs per half */
-    VkPipeline pipeline;
+    VkPipeline pipeline, hull_points;   /* the narrowphase's two passes */
     VkCommandBuffer cb;
     tb_buffer dev[BUF_COUNT];     /* device-local, bound to the world's set */
     tb_buffer up, down;           /* host-visible images of the four, back to back */
@@ -133,6 +134,8 @@ static rig* rig_create(uint32_t cap)
     th_assert_ok(tb_buffer_create(&w->memory, total, usage, 1, &r->up));
     th_assert_ok(tb_buffer_create(&w->memory, total, usage, 1, &r->down));
     th_assert_ok(tb_pipeline_create(&w->pipelines, "narrowphase/contacts", GROUP, &r->pipeline));
+    th_assert_ok(tb_pipeline_create(&w->pipelines, "narrowphase/hull_points", GROUP,
+                                    &r->hull_points));
     th_assert_ok(tb_gpu_command_buffer(&w->gpu, &r->cb));
     return r;
 }
@@ -142,6 +145,7 @@ static void rig_destroy(rig* r)
     tb_world* w = r->w;
     vkDeviceWaitIdle(w->gpu.device);
     vkDestroyPipeline(w->gpu.device, r->pipeline, NULL);
+    vkDestroyPipeline(w->gpu.device, r->hull_points, NULL);
     vkFreeCommandBuffers(w->gpu.device, w->gpu.command_pool, 1, &r->cb);
     for (int i = 0; i < BUF_COUNT; i++) tb_buffer_destroy(&w->memory, &r->dev[i]);
     tb_buffer_destroy(&w->memory, &r->up);
@@ -199,10 +203,15 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
             VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, w->pipelines.layout, 0, 1,
                             &w->pipelines.set, 0, NULL);
-    tb_pass pass = { .pipeline = r->pipeline, .rule = TB_DISPATCH_INDIRECT,
-                     .indirect = r->dev[BUF_COUNTERS].buffer,
-                     .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET };
-    tb_passes_record(cb, w->pipelines.layout, &pass, 1, w->params_buffer.buffer);
+    tb_pass passes[2] = {
+        { .pipeline = r->pipeline, .rule = TB_DISPATCH_INDIRECT,
+          .indirect = r->dev[BUF_COUNTERS].buffer,
+          .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET },
+        { .pipeline = r->hull_points, .rule = TB_DISPATCH_INDIRECT,
+          .indirect = r->dev[BUF_COUNTERS].buffer,
+          .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET },
+    };
+    tb_passes_record(cb, w->pipelines.layout, passes, 2, w->params_buffer.buffer);
     barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     for (int i = 0; i < BUF_COUNT; i++) {

@@ -241,7 +241,8 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
-                                 y its separation (float bits), z w unused */
+                                 y its separation (float bits), z 1 while its points are
+                                 left to narrowphase/hull_points, w unused */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are

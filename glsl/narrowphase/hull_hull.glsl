@@ -10,13 +10,15 @@
 //    pair is clearly better than that (the tolerances of box_box.glsl): faces win ties, so
 //    a resting contact keeps its axis, its reference face and its feature keys from step to
 //    step. It is cached too, with its separation.
-// 4. Points: clipping for a face axis, closest edge points for an edge axis (hull_clip.glsl).
+// 4. Points: clipping for a face axis, closest edge points for an edge axis (hull_clip.glsl),
+//    in a pass of their own (hull_points.comp) from the axis cached in step 3.
 #ifndef TB_NP_HULL_HULL_GLSL
 #define TB_NP_HULL_HULL_GLSL
 
-uint np_hull_hull(np_target t, np_body a, np_body b, float margin, out vec3 normal)
+// Steps 1-3: the axis, cached in the manifold. True when the pair touches within the margin
+// (its points are then step 4's, np_hull_hull_points on the cached axis code).
+bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin)
 {
-    normal = vec3(0.0);
     np_hull ha = np_hull_of(a), hb = np_hull_of(b);
     np_frame b_in_a = np_frame_between(a, b), a_in_b = np_frame_between(b, a);
 
@@ -25,7 +27,7 @@ uint np_hull_hull(np_target t, np_body a, np_body b, float margin, out vec3 norm
         float s = np_axis_separation(cached, ha, hb, b_in_a, a_in_b);
         if (s >= margin) {
             np_set_axis(t, cached, s);
-            return 0u;
+            return false;
         }
     }
 
@@ -33,35 +35,55 @@ uint np_hull_hull(np_target t, np_body a, np_body b, float margin, out vec3 norm
     float sep_a = np_best_face(ha, hb, b_in_a, margin, face_a);
     if (sep_a >= margin) {
         np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
-        return 0u;
+        return false;
     }
     float sep_b = np_best_face(hb, ha, a_in_b, margin, face_b);
     if (sep_b >= margin) {
         np_set_axis(t, np_axis_code(NP_AXIS_FACE_B, 0u, face_b), sep_b);
-        return 0u;
+        return false;
     }
     float sep_e = np_best_edges(ha, hb, a_in_b, margin, edge_a, edge_b);
     if (sep_e >= margin) {
         np_set_axis(t, np_axis_code(NP_AXIS_EDGES, edge_a, edge_b), sep_e);
-        return 0u;
+        return false;
     }
 
     bool ref_b = np_clearly_better(sep_b, sep_a);
-    if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a)) {
+    if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a))
         np_set_axis(t, np_axis_code(NP_AXIS_EDGES, edge_a, edge_b), sep_e);
-        vec3 n = np_edge_axis(np_load_edge_a(ha, edge_a, a_in_b), hb, edge_b, a_in_b.pos).xyz;
-        normal = b.rot * n;
-        return np_hull_edge_contact(t, a, ha, edge_a, b, hb, edge_b, normal, margin);
-    }
-    if (ref_b) {
+    else if (ref_b)
         np_set_axis(t, np_axis_code(NP_AXIS_FACE_B, 0u, face_b), sep_b);
-        normal = -(b.rot * np_hull_plane(hb, face_b).xyz);
-        return np_hull_face_contact(t, b, hb, face_b, ha, a_in_b, (1u << 30u) | (face_b << 22u),
-                                    margin);
+    else
+        np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
+    return true;
+}
+
+// Step 4: the points of the touching pair along the axis `code` step 3 chose.
+uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, float margin,
+                         out vec3 normal)
+{
+    np_hull ha = np_hull_of(a), hb = np_hull_of(b);
+    np_frame b_in_a = np_frame_between(a, b), a_in_b = np_frame_between(b, a);
+    uint kind = code >> 30u, i = (code >> 15u) & 0x7fffu, j = code & 0x7fffu;
+    if (kind == NP_AXIS_EDGES) {
+        vec3 n = np_edge_axis(np_load_edge_a(ha, i, a_in_b), hb, j, a_in_b.pos).xyz;
+        normal = b.rot * n;
+        return np_hull_edge_contact(t, a, ha, i, b, hb, j, normal, margin);
     }
-    np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
-    normal = a.rot * np_hull_plane(ha, face_a).xyz;
-    return np_hull_face_contact(t, a, ha, face_a, hb, b_in_a, face_a << 22u, margin);
+    if (kind == NP_AXIS_FACE_B) {
+        normal = -(b.rot * np_hull_plane(hb, j).xyz);
+        return np_hull_face_contact(t, b, hb, j, ha, a_in_b, (1u << 30u) | (j << 22u), margin);
+    }
+    normal = a.rot * np_hull_plane(ha, j).xyz;
+    return np_hull_face_contact(t, a, ha, j, hb, b_in_a, j << 22u, margin);
+}
+
+// The first pass's part (contacts.comp): the axis, and the points left to the second pass
+// (hull_points.comp) by marking the manifold (axis.z = 1). Returns no points.
+uint np_hull_hull_deferred(np_target t, np_body a, np_body b, float margin)
+{
+    if (np_hull_hull_axis(t, a, b, margin)) manifolds[t.slot].axis.z = 1u;
+    return 0u;
 }
 
 #endif

@@ -115,6 +115,15 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
     return add_shape(w, &rec, &gpu, out);
 }
 
+/* The step records the narrowphase's hull pass only while hull shapes exist (see step.c):
+ * the first hull to come or the last to go rebuilds it. */
+static void count_hull_shape(tb_world* w, int change)
+{
+    uint32_t before = w->hull_shapes;
+    w->hull_shapes = (uint32_t)((int64_t)before + change);
+    if ((before == 0) != (w->hull_shapes == 0)) w->step_built = 0;
+}
+
 /* Hulls (boxes too) own their geometry; the hull table packs it for the GPU. */
 static tb_result add_hull_shape(tb_world* w, tb_shape_record* rec, tb_gpu_shape* gpu,
                                 tb_hull* hull, tb_shape_id* out)
@@ -126,9 +135,13 @@ static tb_result add_hull_shape(tb_world* w, tb_shape_record* rec, tb_gpu_shape*
     }
     *rec->hull = *hull;
     tb_result r = add_shape(w, rec, gpu, out);
-    if (r) tb_shape_release_hull(rec);
-    else w->hulls.dirty = 1;
-    return r;
+    if (r) {
+        tb_shape_release_hull(rec);
+        return r;
+    }
+    w->hulls.dirty = 1;
+    if (rec->type == TB_SHAPE_HULL) count_hull_shape(w, +1);
+    return TB_OK;
 }
 
 void tb_shape_release_hull(tb_shape_record* s)
@@ -216,6 +229,7 @@ tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
                        s->users);
     s->alive = 0;
     if (s->hull) w->hulls.dirty = 1;
+    if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
     tb_shape_release_hull(s);
     tb_slots_give(&w->shape_slots, slot);
     return TB_OK;

@@ -19,6 +19,7 @@ static const kernel_def kernel_defs[TB_KERNEL_COUNT] = {
     [TB_KERNEL_GRID_PAIRS] = { "broadphase/grid_pairs", TB_WORKGROUP_SIZE },
     [TB_KERNEL_PAIR_CHECK] = { "broadphase/pair_check", TB_WORKGROUP_SIZE },
     [TB_KERNEL_CONTACTS] = { "narrowphase/contacts", TB_WORKGROUP_SIZE },
+    [TB_KERNEL_HULL_POINTS] = { "narrowphase/hull_points", TB_WORKGROUP_SIZE },
     [TB_KERNEL_KEEP_CONTACTS] = { "narrowphase/keep", TB_WORKGROUP_SIZE },
     [TB_KERNEL_APPLY_FORCES] = { "integrate/apply_forces", TB_WORKGROUP_SIZE },
     [TB_KERNEL_INTEGRATE] = { "integrate/integrate", TB_WORKGROUP_SIZE },
@@ -113,6 +114,15 @@ static void grid_stage(builder* b)
     end_stage(b, "broadphase/grid");
 }
 
+/* Manifolds of every pair, then the points of the touching hull pairs (see contacts.comp),
+ * a pass recorded only while the world has hull shapes (box pairs never defer theirs). */
+static void narrowphase_stage(builder* b)
+{
+    per_pair(b, TB_KERNEL_CONTACTS, 0);
+    if (b->w->hull_shapes) per_pair(b, TB_KERNEL_HULL_POINTS, 0);
+    end_stage(b, "narrowphase/contacts");
+}
+
 static void colour_stage(builder* b)
 {
     tb_world* w = b->w;
@@ -154,7 +164,7 @@ tb_result tb_step_build(tb_world* w)
     single(&b, TB_KERNEL_STEP_BEGIN, TB_DISPATCH_FIXED, "step/begin");
     single(&b, TB_KERNEL_WORLD_AABB, TB_DISPATCH_PER_BODY, "broadphase/world_aabb");
     grid_stage(&b);
-    single(&b, TB_KERNEL_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/contacts");
+    narrowphase_stage(&b);
     colour_stage(&b);
     prepare_stage(&b);
     single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");

@@ -20,7 +20,8 @@
 /// The step's compute kernels (src/api/step.c names their shaders).
 typedef enum tb_kernel {
     TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_GRID_ASSIGN, TB_KERNEL_GRID_RANGES,
-    TB_KERNEL_GRID_PAIRS, TB_KERNEL_PAIR_CHECK, TB_KERNEL_CONTACTS, TB_KERNEL_KEEP_CONTACTS,
+    TB_KERNEL_GRID_PAIRS, TB_KERNEL_PAIR_CHECK, TB_KERNEL_CONTACTS, TB_KERNEL_HULL_POINTS,
+    TB_KERNEL_KEEP_CONTACTS,
     TB_KERNEL_APPLY_FORCES,
     TB_KERNEL_INTEGRATE, TB_KERNEL_STEP_END, TB_KERNEL_COUNT
 } tb_kernel;
@@ -105,6 +106,7 @@ struct tb_world {
     uint32_t shape_buffer_capacity;
     int shapes_dirty;
     tb_hull_table hulls;
+    uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
     uint64_t steps, submits;

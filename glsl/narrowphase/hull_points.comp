@@ -1,0 +1,37 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// Narrowphase, second pass: the points of the hull pairs the first pass (contacts.comp)
+// found touching and marked (manifolds[p].axis.z = 1), from the axis it cached there:
+// clipping and reduction for a face axis, the closest edge points for an edge axis
+// (hull_hull.glsl step 4). One thread per pair; unmarked pairs return at once. Dispatched
+// indirectly over counters.pair_dispatch.
+#include "world.glsl"
+#include "quat.glsl"
+#include "manifold.glsl"
+#include "box_box.glsl"
+#include "hull.glsl"
+#include "hull_sat.glsl"
+#include "hull_clip.glsl"
+#include "hull_hull.glsl"
+#include "pair.glsl"
+
+uint hull_points(uint p)
+{
+    np_pair q = np_pair_load(p);
+    vec3 normal;
+    uint count = np_hull_hull_points(q.t, q.first, q.second, manifolds[p].axis.x, q.margin,
+                                     normal);
+    manifolds[p].axis.z = 0u;
+    np_pair_finish(q, count, normal);
+    return count;
+}
+
+void main()
+{
+    if (counters.state.x != 0u) return;
+    uint p = pair_thread_index();
+    bool marked = p < counters.state.z && manifolds[p].axis.z != 0u;
+    np_count_points(marked ? hull_points(p) : 0u);
+}

@@ -1,0 +1,76 @@
+// A pair as both narrowphase passes see it (contacts.comp, hull_points.comp): its bodies in
+// one canonical order (by shape type, then body index), so points and feature keys depend
+// only on the unordered pair and swapping a and b only negates the normal; its speculative
+// reach; last step's manifold of it; and how its manifold is finished.
+#ifndef TB_NP_PAIR_GLSL
+#define TB_NP_PAIR_GLSL
+
+// How far body i may carry any of its points within the step: its motion (velocity with
+// this step's gravity) plus the reach of its turn.
+vec3 step_motion(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return vec3(0.0);
+    float dt = params.gravity.w;
+    return (body_linvel[i].xyz + params.gravity.xyz * (body_inv_inertia[i].w * dt)) * dt;
+}
+
+float step_turn_reach(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return 0.0;
+    float angle = min(length(body_angvel[i].xyz) * params.gravity.w, params.limits.x);
+    return angle * length(shapes[body_info[i].x].aabb_half.xyz);
+}
+
+// Speculative reach of a pair: the contact margin plus how far the two may close in within
+// the step. Points up to that far apart are kept (speculative, separation > 0); the solver
+// lets a gap close no faster than it would within a substep, so a fast body lands on a
+// surface instead of passing through it (while its path within the step is straight).
+float pair_margin(uint a, uint b)
+{
+    return params.contact.x + length(step_motion(a) - step_motion(b)) + step_turn_reach(a) +
+           step_turn_reach(b);
+}
+
+struct np_pair {
+    uint a, b;
+    np_body body_a, body_b;
+    np_body first, second;    // the canonical order
+    bool swapped;             // first is b
+    np_target t;
+    float margin;
+};
+
+np_pair np_pair_load(uint p)
+{
+    np_pair q;
+    uvec2 pair = pairs[pair_half_base() + p].xy;
+    q.a = pair.x;
+    q.b = pair.y;
+    q.body_a = np_load_body(q.a);
+    q.body_b = np_load_body(q.b);
+    q.swapped = q.body_a.type > q.body_b.type || (q.body_a.type == q.body_b.type && q.a > q.b);
+    q.t = np_target_make(p, q.a, q.b, current_half() ^ 1u);
+    // Selected operands (not one call per order): both orders run the very same
+    // instructions, so their points agree to the bit.
+    q.first = q.swapped ? q.body_b : q.body_a;
+    q.second = q.swapped ? q.body_a : q.body_b;
+    q.margin = pair_margin(q.a, q.b);
+    return q;
+}
+
+// Normal (from first to second) back to a to b, and the pair's combined materials.
+void np_pair_finish(np_pair q, uint count, vec3 normal)
+{
+    np_finish(q.t, count, q.swapped ? -normal : normal, q.a, q.b,
+              sqrt(q.body_a.material.x * q.body_b.material.x),
+              max(q.body_a.material.y, q.body_b.material.y));
+}
+
+// Contact points for the stats: one atomic per subgroup.
+void np_count_points(uint count)
+{
+    uint total = subgroupAdd(count);
+    if (subgroupElect() && total != 0u) atomicAdd(counters.solver.w, total);
+}
+
+#endif
