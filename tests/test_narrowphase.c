@@ -1516,7 +1516,7 @@ static void expect_impulses(const tb_gpu_manifold* m, int carried, uint32_t exce
     for (uint32_t k = 0; k < m->info.x; k++) {
         tb_gpu_vec4 want = carried && feature(m, k) != except ? impulse_for(feature(m, k))
                                                                 : (tb_gpu_vec4){ 0, 0, 0, 0 };
-        want.w = 0; /* the split impulse starts again */
+        want.w = 0; /* the step's total starts again */
         if (m->impulse[k].x != want.x || m->impulse[k].y != want.y || m->impulse[k].z != want.z ||
             m->impulse[k].w != want.w)
             fail_msg("%s: point %u (feature %#x) impulse (%g %g %g %g), want (%g %g %g %g)", what,

@@ -83,8 +83,8 @@ np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
     return t;
 }
 
-// The normal and friction impulses last step's point of the same feature ended with; the
-// split impulse corrects position errors of one step only, so it starts from 0.
+// The normal and friction impulses last step's point of the same feature ended with (per
+// substep); the step's total normal impulse (w) starts from 0.
 // Features can be ambiguous where corners of the two shapes coincide (equal boxes stacked
 // exactly): a tiny turn relabels the same point. A point no key matches therefore takes
 // the impulse of last step's nearest point within the contact margin, so a resting stack

@@ -1,5 +1,6 @@
 /* The contact solver's passes: graph colouring of the constraints into batches, then
- * batched projected Gauss-Seidel with split impulses (glsl/solver/).
+ * the soft step: substeps of batched projected Gauss-Seidel with soft contacts and a relax
+ * sweep (glsl/solver/).
  *
  * The passes read and write the world's set 0 (counters, pairs, manifolds, constraints,
  * colour list, body arrays, claims, push); sizes only the GPU knows come from the counters:
