@@ -3,7 +3,8 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // World AABB of every body from its shape's local AABB: the centre is carried by the pose,
 // the half extents by |R| (the sum of |column k| * h_k), which bounds the rotated box
-// exactly; a hull's box bounds its turned vertices. A sphere's box does not turn with it: its half extent stays the radius.
+// exactly; a hull's box bounds its turned vertices. A sphere's box does not turn with it:
+// its half extent stays the radius.
 // A dynamic body's box is swept over the step's motion (its velocity with this step's
 // gravity, and the reach of its turn), so the broadphase pairs it with whatever it could hit
 // within the step and the narrowphase can give that a speculative point.
@@ -11,20 +12,6 @@
 // The largest side of any dynamic body's box goes to counters.grid.x: it sizes the grid.
 #include "world.glsl"
 #include "quat.glsl"
-
-// How far the centre may move this step: the velocity with this step's gravity, times dt.
-vec3 step_motion(uint i)
-{
-    float dt = params.gravity.w;
-    return (body_linvel[i].xyz + params.gravity.xyz * (body_inv_inertia[i].w * dt)) * dt;
-}
-
-// How far a turn this step may carry any point within `radius` of the centre.
-vec3 step_turn_reach(uint i, float radius)
-{
-    float angle = min(length(body_angvel[i].xyz) * params.gravity.w, params.limits.x);
-    return vec3(angle * radius);
-}
 
 // A hull's own box: its turned vertices' bounds, tighter than the turned local box (which
 // for a hull turned 45 degrees is up to 1.4 times wider on each axis, and ten times the
@@ -58,12 +45,10 @@ void main()
             vec3 extent = shape.info.x == TB_GPU_SHAPE_SPHERE
                               ? vec3(shape.params.x)
                               : abs(r[0]) * h.x + abs(r[1]) * h.y + abs(r[2]) * h.z;
-            if (shape.info.x == TB_GPU_SHAPE_HULL) hull_bounds(shape, r, body_pos[i].xyz, centre, extent);
-            vec3 sweep = vec3(0.0);
-            if (body_is(i, TB_BODY_FLAG_DYNAMIC)) {
-                sweep = step_motion(i);
-                extent += step_turn_reach(i, length(h));
-            }
+            if (shape.info.x == TB_GPU_SHAPE_HULL)
+                hull_bounds(shape, r, body_pos[i].xyz, centre, extent);
+            vec3 sweep = body_step_motion(i);
+            extent += vec3(body_step_turn(i) * length(h));
             body_aabb_min[i] = vec4(min(centre - extent, centre - extent + sweep), 0.0);
             body_aabb_max[i] = vec4(max(centre + extent, centre + extent + sweep), 0.0);
             if (body_is(i, TB_BODY_FLAG_DYNAMIC))

@@ -82,4 +82,22 @@ bool body_is(uint i, uint flags)
     return (body_info[i].y & flags) == flags;
 }
 
+// How far body i's centre may move this step: its velocity with this step's gravity, times
+// dt; zero unless it is dynamic. The broadphase sweeps boxes and the narrowphase widens a
+// pair's speculative reach by it.
+vec3 body_step_motion(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return vec3(0.0);
+    float dt = params.gravity.w;
+    return (body_linvel[i].xyz + params.gravity.xyz * (body_inv_inertia[i].w * dt)) * dt;
+}
+
+// The angle body i may turn this step (clamped like the integration); zero unless dynamic.
+// A point r from the centre moves at most this times |r|.
+float body_step_turn(uint i)
+{
+    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return 0.0;
+    return min(length(body_angvel[i].xyz) * params.gravity.w, params.limits.x);
+}
+
 #endif

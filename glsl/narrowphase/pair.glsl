@@ -5,30 +5,16 @@
 #ifndef TB_NP_PAIR_GLSL
 #define TB_NP_PAIR_GLSL
 
-// How far body i may carry any of its points within the step: its motion (velocity with
-// this step's gravity) plus the reach of its turn.
-vec3 step_motion(uint i)
-{
-    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return vec3(0.0);
-    float dt = params.gravity.w;
-    return (body_linvel[i].xyz + params.gravity.xyz * (body_inv_inertia[i].w * dt)) * dt;
-}
-
-float step_turn_reach(uint i)
-{
-    if (!body_is(i, TB_BODY_FLAG_DYNAMIC)) return 0.0;
-    float angle = min(length(body_angvel[i].xyz) * params.gravity.w, params.limits.x);
-    return angle * length(shapes[body_info[i].x].aabb_half.xyz);
-}
-
 // Speculative reach of a pair: the contact margin plus how far the two may close in within
 // the step. Points up to that far apart are kept (speculative, separation > 0); the solver
 // lets a gap close no faster than it would within a substep, so a fast body lands on a
 // surface instead of passing through it (while its path within the step is straight).
 float pair_margin(uint a, uint b)
 {
-    return params.contact.x + length(step_motion(a) - step_motion(b)) + step_turn_reach(a) +
-           step_turn_reach(b);
+    float reach_a = body_step_turn(a) * length(shapes[body_info[a].x].aabb_half.xyz);
+    float reach_b = body_step_turn(b) * length(shapes[body_info[b].x].aabb_half.xyz);
+    return params.contact.x + length(body_step_motion(a) - body_step_motion(b)) + reach_a +
+           reach_b;
 }
 
 struct np_pair {

@@ -151,4 +151,13 @@ void restitution_contact(uint p)
     contact_store(v);
 }
 
+// What a sweep (TB_SOLVE_*, `mode`) does to pair p in `substep`; solve.comp and solve_tail
+// both go through here.
+void contact_sweep(uint p, uint mode, uint substep)
+{
+    if (mode == TB_SOLVE_WARM) warm_start_contact(p, substep);
+    else if (mode == TB_SOLVE_RESTITUTION) restitution_contact(p);
+    else solve_contact(p, mode == TB_SOLVE_RELAX);
+}
+
 #endif

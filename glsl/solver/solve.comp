@@ -19,19 +19,11 @@
 // velocities, so stacks rest without jitter and deep contacts do not pop apart.
 #include "contact.glsl"
 
-void work(uint p)
-{
-    uint mode = push.args.z;
-    if (mode == TB_SOLVE_WARM) warm_start_contact(p, push.args.y);
-    else if (mode == TB_SOLVE_RESTITUTION) restitution_contact(p);
-    else solve_contact(p, mode == TB_SOLVE_RELAX);
-}
-
 void main()
 {
     if (step_aborted()) return;
     uint colour = push.args.x;
     uint i = pair_thread_index();
     if (colour >= TB_MAX_COLOURS || i >= counters.colour[colour].x) return;
-    work(colour_list[counters.colour[colour].y + i]);
+    contact_sweep(colour_list[counters.colour[colour].y + i], push.args.z, push.args.y);
 }

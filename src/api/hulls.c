@@ -37,32 +37,34 @@ static tb_result create_buffer(tb_world* w, uint32_t binding, VkDeviceSize bytes
     return TB_OK;
 }
 
-/* Host images at least as large as the GPU buffers, so packing never reallocates twice. */
+/* One host image and its GPU buffer, doubled until they hold `needed` elements of `size`
+ * bytes. The host image is as large as the buffer, so packing never reallocates twice. */
+static tb_result grow_array(tb_world* w, uint32_t binding, uint32_t needed, size_t size,
+                            void** host, uint32_t* capacity, tb_buffer* buffer)
+{
+    if (needed <= *capacity) return TB_OK;
+    uint32_t cap = *capacity;
+    while (cap < needed) cap *= 2;
+    void* grown = realloc(*host, (size_t)cap * size);
+    if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    *host = grown;
+    tb_result r = create_buffer(w, binding, (VkDeviceSize)cap * size, buffer);
+    if (!r) *capacity = cap;
+    return r;
+}
+
 static tb_result grow(tb_world* w, uint32_t vectors, uint32_t topology)
 {
     tb_hull_table* t = &w->hulls;
-    if (vectors > t->vector_capacity) {
-        uint32_t cap = t->vector_capacity;
-        while (cap < vectors) cap *= 2;
-        tb_gpu_vec4* host = realloc(t->vectors, cap * sizeof *host);
-        if (!host) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-        t->vectors = host;
-        tb_result r = create_buffer(w, TB_BIND_HULL_VECTORS, cap * sizeof *host, &t->vector_buffer);
-        if (r) return r;
-        t->vector_capacity = cap;
-    }
-    if (topology > t->topology_capacity) {
-        uint32_t cap = t->topology_capacity;
-        while (cap < topology) cap *= 2;
-        uint32_t* host = realloc(t->topology, cap * sizeof *host);
-        if (!host) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-        t->topology = host;
-        tb_result r = create_buffer(w, TB_BIND_HULL_TOPOLOGY, cap * sizeof *host,
-                                    &t->topology_buffer);
-        if (r) return r;
-        t->topology_capacity = cap;
-    }
-    return TB_OK;
+    void* v = t->vectors;
+    void* o = t->topology;
+    tb_result r = grow_array(w, TB_BIND_HULL_VECTORS, vectors, sizeof *t->vectors, &v,
+                             &t->vector_capacity, &t->vector_buffer);
+    t->vectors = v;
+    if (!r) r = grow_array(w, TB_BIND_HULL_TOPOLOGY, topology, sizeof *t->topology, &o,
+                           &t->topology_capacity, &t->topology_buffer);
+    t->topology = o;
+    return r;
 }
 
 tb_result tb_hull_table_init(tb_world* w)

@@ -1,11 +1,12 @@
 /* The step as a graph of stages, built from the kernels and the parallel primitives.
  *
  * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> colouring -> solver
- * data -> forces -> solver -> integration. The solver data (restitution) comes before
- * gravity so a bounce reflects the speed the body hit with. Gravity is applied after the pairs and colours are known, so a
- * step that overflows a buffer is abandoned before any body changes; and before the
- * solver, so a body resting on another has its weight cancelled by the contact in the same
- * step and does not sink or jitter.
+ * data -> forces -> solver -> integration. The solver data (restitution) comes before the
+ * step's velocities change, so a bounce reflects the speed the body hit with. Forces
+ * (damping, the solver records) come after the pairs and colours are known, so a step that
+ * overflows a buffer is abandoned before any body changes; gravity is applied in each of the
+ * solver's substeps, so a resting body's weight is cancelled by its contact in the same
+ * substep and it does not sink or jitter.
  */
 #include "api/world.h"
 
