@@ -78,6 +78,30 @@ typedef enum tb_log_level {
 /// Log sink. Called from the thread that made the call which logs. `message` is one line.
 typedef void tb_log_fn(void* user, tb_log_level level, const char* message);
 
+/// How the step finds the pairs of bodies whose boxes overlap (the broadphase). Every one
+/// finds exactly the same pairs; they differ in speed, which depends on the scene (see the
+/// README's performance section).
+typedef enum tb_broadphase {
+    /// The TUMBLE_BROADPHASE environment variable ("grid", "sap", "lbvh" or "isap") when it
+    /// is set, else the library's choice for most scenes.
+    TB_BROADPHASE_DEFAULT = 0,
+    /// Uniform grid of cells as wide as the largest dynamic body: bodies of similar size.
+    TB_BROADPHASE_GRID = 1,
+    /// Sort and sweep along the axis of largest variance: any mix of sizes.
+    TB_BROADPHASE_SAP = 2,
+    /// Linear bounding volume hierarchy (Morton order, rebuilt every step): huge, sparse or
+    /// clustered worlds.
+    TB_BROADPHASE_LBVH = 3,
+    /// Incremental sort and sweep on three axes: keeps last step's order and pairs and
+    /// finds what changed, for scenes that move little per step.
+    TB_BROADPHASE_ISAP = 4,
+    TB_BROADPHASE_FORCE_32 = 0x7fffffff
+} tb_broadphase;
+
+/// The broadphase's name ("grid", "sap", "lbvh", "isap"); "default" for the default and
+/// NULL for a value that names none.
+TB_API const char* tb_broadphase_name(tb_broadphase broadphase);
+
 typedef struct tb_world_def {
     /// Gravity acceleration, m/s^2. Default (0, -9.81, 0).
     tb_vec3 gravity;
@@ -139,6 +163,8 @@ typedef struct tb_world_def {
     /// Log callback and its user pointer. NULL: warnings and errors go to stderr.
     tb_log_fn* log;
     void* log_user;
+    /// The broadphase (see tb_broadphase). Default TB_BROADPHASE_DEFAULT.
+    tb_broadphase broadphase;
     /// Internal: set by tb_default_world_def(). Do not touch.
     int32_t internal_cookie;
 } tb_world_def;
@@ -204,6 +230,7 @@ typedef struct tb_world_stats {
     uint32_t batch_count;         ///< subgroup-wide constraint batches of the last step
     uint32_t colour_rounds;       ///< colouring rounds recorded in the step
     uint64_t steps_redone;        ///< steps run again after a GPU buffer grew
+    const char* broadphase;       ///< the broadphase in use: "grid", "sap", "lbvh" or "isap"
     uint32_t stage_count;
     tb_stage_time stages[TB_MAX_STAGES];
 } tb_world_stats;

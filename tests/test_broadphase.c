@@ -1,9 +1,12 @@
-/* The grid broadphase against brute force: after one step, the pairs the GPU found must be
+/* Every broadphase against brute force: after a step, the pairs the GPU found must be
  * exactly the pairs of AABBs (as that step computed them, grown by the contact margin)
- * that overlap, each once, none static-static. Scenes: uniform, mixed sizes 1:1000,
- * duplicates, touching boxes, planes and big static boxes, dead slots. */
+ * that overlap, each once, none static-static. Scenes: empty, one body, uniform, mixed
+ * sizes 1:1000, clusters far apart, all bodies in one place, duplicates, touching boxes,
+ * planes and big static boxes, dead slots, and bodies moving over many steps while others
+ * come and go. Each scene runs with each broadphase. */
 #include "harness.h"
 
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,16 +60,15 @@ static pair* brute_pairs(tb_world* w, uint32_t* count)
     tb_body_id* ids = calloc(slots + 1, sizeof *ids);
     tb_vec3* mn = calloc(slots + 1, sizeof *mn);
     tb_vec3* mx = calloc(slots + 1, sizeof *mx);
+    tb_body_type* type = calloc(slots + 1, sizeof *type);
     uint32_t live = tb_world_body_ids(w, ids, slots);
     th_assert_ok(tb_world_read_aabbs(w, ids, live, mn, mx));
+    for (uint32_t i = 0; i < live; i++) th_assert_ok(tb_body_get_type(w, ids[i], &type[i]));
     size_t cap = 1024, n = 0;
     pair* out = malloc(cap * sizeof *out);
     for (uint32_t i = 0; i < live; i++) {
         for (uint32_t j = i + 1; j < live; j++) {
-            tb_body_type ti, tj;
-            th_assert_ok(tb_body_get_type(w, ids[i], &ti));
-            th_assert_ok(tb_body_get_type(w, ids[j], &tj));
-            if (ti == TB_BODY_STATIC && tj == TB_BODY_STATIC) continue;
+            if (type[i] == TB_BODY_STATIC && type[j] == TB_BODY_STATIC) continue;
             if (!touch(mn, mx, i, j, w->contact_margin)) continue;
             if (n == cap) out = realloc(out, (cap *= 2) * sizeof *out);
             out[n++] = (pair){ ids[i].index1 - 1, ids[j].index1 - 1 };
@@ -74,15 +76,16 @@ static pair* brute_pairs(tb_world* w, uint32_t* count)
     }
     qsort(out, n, sizeof *out, pair_order);
     free(ids);
+    free(type);
     free(mn);
     free(mx);
     *count = (uint32_t)n;
     return out;
 }
 
-static void expect_brute_force_pairs(tb_world* w)
+/* The last step's pairs equal brute force's. */
+static void expect_same_pairs(tb_world* w)
 {
-    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
     uint32_t ng, nb;
     pair* g = gpu_pairs(w, &ng);
     pair* b = brute_pairs(w, &nb);
@@ -101,13 +104,33 @@ static void expect_brute_force_pairs(tb_world* w)
     free(b);
 }
 
-static tb_world* zero_gravity_world(void)
+static void expect_brute_force_pairs(tb_world* w)
+{
+    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+    expect_same_pairs(w);
+}
+
+/* The broadphase under test (each test runs once per kind; cmocka's initial state). */
+static tb_broadphase kind_of(void** state)
+{
+    return *(const tb_broadphase*)*state;
+}
+
+static tb_world* kind_world(void** state, tb_world_def* def)
+{
+    def->broadphase = kind_of(state);
+    tb_world* w = th_world_create(def);
+    assert_string_equal(th_stats(w).broadphase, tb_broadphase_name(kind_of(state)));
+    return w;
+}
+
+static tb_world* zero_gravity_world(void** state)
 {
     tb_world_def def = tb_default_world_def();
     def.gravity = th_v3(0, 0, 0);
     def.initial_body_capacity = 64;
     def.initial_pair_capacity = 16;   /* small on purpose: the pair buffer must grow */
-    return th_world_create(&def);
+    return kind_world(state, &def);
 }
 
 static void random_bodies(tb_world* w, th_rng* rng, uint32_t n, float extent, float lo, float hi,
@@ -129,8 +152,7 @@ static void random_bodies(tb_world* w, th_rng* rng, uint32_t n, float extent, fl
 
 static void test_uniform(void** state)
 {
-    (void)state;
-    tb_world* w = zero_gravity_world();
+    tb_world* w = zero_gravity_world(state);
     th_rng rng = th_rng_seed(1);
     random_bodies(w, &rng, 2000, 3.0f, 0.2f, 0.25f, 0.1f);
     expect_brute_force_pairs(w);
@@ -141,8 +163,7 @@ static void test_uniform(void** state)
 
 static void test_mixed_sizes(void** state)
 {
-    (void)state;
-    tb_world* w = zero_gravity_world();
+    tb_world* w = zero_gravity_world(state);
     th_rng rng = th_rng_seed(2);
     random_bodies(w, &rng, 1500, 10.0f, 0.01f, 10.0f, 0.3f);
     expect_brute_force_pairs(w);
@@ -151,11 +172,10 @@ static void test_mixed_sizes(void** state)
 
 static void test_duplicates_and_touching(void** state)
 {
-    (void)state;
     tb_world_def def = tb_default_world_def();
     def.gravity = th_v3(0, 0, 0);
     def.contact_margin = 0.0f;   /* touching faces must still count */
-    tb_world* w = th_world_create(&def);
+    tb_world* w = kind_world(state, &def);
     tb_shape_id box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
     for (int i = 0; i < 5; i++) {           /* five bodies in one place */
         tb_body_def d = th_dynamic_def(box, th_v3(0, 0, 0));
@@ -172,8 +192,7 @@ static void test_duplicates_and_touching(void** state)
 
 static void test_large_statics_and_dead_slots(void** state)
 {
-    (void)state;
-    tb_world* w = zero_gravity_world();
+    tb_world* w = zero_gravity_world(state);
     tb_shape_id ground = th_plane(w, th_v3(0, 1, 0), 0.0f);
     tb_shape_id wall = th_box(w, th_v3(20.0f, 5.0f, 0.5f));
     tb_body_def g = th_static_def(ground, th_v3(0, -1.0f, 0));
@@ -194,8 +213,7 @@ static void test_large_statics_and_dead_slots(void** state)
 
 static void test_empty_and_single(void** state)
 {
-    (void)state;
-    tb_world* w = zero_gravity_world();
+    tb_world* w = zero_gravity_world(state);
     th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
     assert_int_equal(th_stats(w).pair_count, 0);
     tb_body_def d = th_dynamic_def(th_sphere(w, 1.0f), th_v3(0, 0, 0));
@@ -205,14 +223,92 @@ static void test_empty_and_single(void** state)
     th_world_destroy(w);
 }
 
+/* Tight clusters a kilometre apart: dense overlaps in a huge, mostly empty world. */
+static void test_clusters(void** state)
+{
+    tb_world* w = zero_gravity_world(state);
+    th_rng rng = th_rng_seed(4);
+    tb_shape_id ball = th_sphere(w, 0.1f);
+    for (int c = 0; c < 8; c++) {
+        tb_vec3 at = th_v3(1000.0f * (float)(c % 2), 1000.0f * (float)((c / 2) % 2),
+                           -1000.0f * (float)(c / 4));
+        for (int i = 0; i < 120; i++) {
+            tb_vec3 p = th_v3(at.x + th_rng_range(&rng, -0.6f, 0.6f),
+                              at.y + th_rng_range(&rng, -0.6f, 0.6f),
+                              at.z + th_rng_range(&rng, -0.6f, 0.6f));
+            tb_body_def d = (i % 5) ? th_dynamic_def(ball, p) : th_static_def(ball, p);
+            th_body(w, &d);
+        }
+    }
+    expect_brute_force_pairs(w);
+    th_world_destroy(w);
+}
+
+/* Every body in the same place: every pair overlaps (n (n - 1) / 2 of them). */
+static void test_all_in_one_place(void** state)
+{
+    tb_world* w = zero_gravity_world(state);
+    th_rng rng = th_rng_seed(5);
+    tb_shape_id box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
+    for (int i = 0; i < 300; i++) {
+        tb_vec3 p = th_v3(th_rng_range(&rng, -0.01f, 0.01f), th_rng_range(&rng, -0.01f, 0.01f),
+                          th_rng_range(&rng, -0.01f, 0.01f));
+        tb_body_def d = th_dynamic_def(box, p);
+        th_body(w, &d);
+    }
+    expect_brute_force_pairs(w);
+    assert_int_equal(th_stats(w).pair_count, 300 * 299 / 2);
+    th_world_destroy(w);
+}
+
+/* Bodies drifting through each other for many steps (the solver pushes overlapping ones
+ * apart, so the order changes a little every step), with bodies destroyed and created in
+ * between: every step's pairs must be right, not only the first's. */
+static void test_moving_over_many_steps(void** state)
+{
+    tb_world* w = zero_gravity_world(state);
+    th_rng rng = th_rng_seed(6);
+    random_bodies(w, &rng, 700, 4.0f, 0.1f, 0.5f, 0.05f);
+    tb_body_id ids[1000];
+    uint32_t n = tb_world_body_ids(w, ids, 1000);
+    for (uint32_t i = 0; i < n; i++) {
+        tb_vec3 v = th_v3(th_rng_range(&rng, -3, 3), th_rng_range(&rng, -3, 3),
+                          th_rng_range(&rng, -3, 3));
+        tb_body_type t;
+        th_assert_ok(tb_body_get_type(w, ids[i], &t));
+        if (t == TB_BODY_DYNAMIC) th_assert_ok(tb_body_set_velocity(w, ids[i], v, v));
+    }
+    for (int step = 0; step < 24; step++) {
+        if (step == 8)
+            for (uint32_t i = 0; i < n; i += 5) th_assert_ok(tb_body_destroy(w, ids[i]));
+        if (step == 16) random_bodies(w, &rng, 150, 4.0f, 0.1f, 0.5f, 0.0f);
+        expect_brute_force_pairs(w);
+    }
+    th_world_destroy(w);
+}
+
+static const tb_broadphase kinds[] = {
+    TB_BROADPHASE_GRID,
+};
+
+#define SCENES(X) X(test_empty_and_single) X(test_uniform) X(test_mixed_sizes) \
+    X(test_clusters) X(test_all_in_one_place) X(test_duplicates_and_touching) \
+    X(test_large_statics_and_dead_slots) X(test_moving_over_many_steps)
+#define SCENE_COUNT 8
+
 int main(void)
 {
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_empty_and_single),
-        cmocka_unit_test(test_uniform),
-        cmocka_unit_test(test_mixed_sizes),
-        cmocka_unit_test(test_duplicates_and_touching),
-        cmocka_unit_test(test_large_statics_and_dead_slots),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    enum { KINDS = sizeof kinds / sizeof kinds[0] };
+    struct CMUnitTest tests[KINDS * SCENE_COUNT];
+    char names[KINDS * SCENE_COUNT][96];
+    uint32_t n = 0;
+    for (uint32_t k = 0; k < KINDS; k++) {
+#define ADD(fn)                                                                           \
+        snprintf(names[n], sizeof names[n], "%s/%s", tb_broadphase_name(kinds[k]), #fn);    \
+        tests[n] = (struct CMUnitTest){ names[n], fn, NULL, NULL, (void*)&kinds[k] };     \
+        n++;
+        SCENES(ADD)
+#undef ADD
+    }
+    return _cmocka_run_group_tests("broadphase", tests, n, NULL, NULL);
 }

@@ -39,12 +39,4 @@ bool grid_is_large(uint body, float cell)
     return !body_is(body, TB_BODY_FLAG_DYNAMIC) && max(side.x, max(side.y, side.z)) > cell;
 }
 
-// AABBs overlap once each is grown by half the contact margin.
-bool aabbs_touch(uint a, uint b)
-{
-    float m = params.contact.x;
-    return !any(greaterThan(body_aabb_min[a].xyz - m, body_aabb_max[b].xyz)) &&
-           !any(greaterThan(body_aabb_min[b].xyz - m, body_aabb_max[a].xyz));
-}
-
 #endif

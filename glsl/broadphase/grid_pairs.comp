@@ -1,9 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Pair finding on the grid, run twice with the same traversal: first to count the pairs
-// each body owns, then (after an exclusive scan of the counts gave each body its offset)
-// to write them. Counting first makes the pair list deterministic, grouped by owner in slot
-// order, and lets the host grow the pair buffer before anything is lost.
+// each body owns, then to write them (pairs.glsl). Counting first makes the pair list
+// deterministic, grouped by owner in slot order, and lets the host grow the pair buffer
+// before anything is lost.
 //
 // A pair found in the grid is owned by its lower slot; a pair with a large static body is
 // owned by the dynamic body. Each body is entered in one cell only, and a candidate is
@@ -11,24 +11,9 @@
 // so each overlapping pair is reported exactly once. Static-static pairs never are.
 #include "world.glsl"
 #include "grid.glsl"
+#include "pairs.glsl"
 
-layout(push_constant) uniform Push { tb_gpu_push push; };
-
-const uint MODE_COUNT = 0u;
-
-uint pair_base;     // where this body's pairs go (write mode)
-uint pair_found;
-
-void report(uint owner, uint other, bool write)
-{
-    if (write) {
-        uint at = pair_half_base() + pair_base + pair_found;
-        pairs[at] = uvec4(owner, other, TB_NO_COLOUR, 0u);
-    }
-    pair_found++;
-}
-
-void search_cell(uint i, bool i_dynamic, ivec3 c, float cell, bool write)
+void search_cell(uint i, bool i_dynamic, ivec3 c, float cell)
 {
     uint key = grid_hash(c);
     uvec2 range = grid_table[key];
@@ -38,16 +23,16 @@ void search_cell(uint i, bool i_dynamic, ivec3 c, float cell, bool write)
         if (j <= i) continue;
         if (!i_dynamic && !body_is(j, TB_BODY_FLAG_DYNAMIC)) continue;
         if (grid_cell_of(j, cell) != c || !aabbs_touch(i, j)) continue;
-        report(i, j, write);
+        bp_report(i, j);
     }
 }
 
-void search_large(uint i, bool write)
+void search_large(uint i)
 {
     uint count = counters.grid.y;
     for (uint l = 0u; l < count; l++) {
         uint j = large_list[l];
-        if (aabbs_touch(i, j)) report(i, j, write);
+        if (aabbs_touch(i, j)) bp_report(i, j);
     }
 }
 
@@ -55,10 +40,8 @@ void main()
 {
     uint s = body_thread_index();
     if (s >= counters.grid.z || step_aborted()) return;
-    bool write = push.args.z != MODE_COUNT;
     uint i = grid_bodies[s];
-    pair_found = 0u;
-    pair_base = write ? body_pair_count[i] : 0u;
+    bp_begin(i);
     if (grid_keys[s] < grid_sentinel()) {
         float cell = grid_cell_size();
         ivec3 c = grid_cell_of(i, cell);
@@ -66,14 +49,8 @@ void main()
         for (int dz = -1; dz <= 1; dz++)
             for (int dy = -1; dy <= 1; dy++)
                 for (int dx = -1; dx <= 1; dx++)
-                    search_cell(i, dynamic, c + ivec3(dx, dy, dz), cell, write);
-        if (dynamic) search_large(i, write);
+                    search_cell(i, dynamic, c + ivec3(dx, dy, dz), cell);
+        if (dynamic) search_large(i);
     }
-    if (!write) {
-        body_pair_count[i] = pair_found;
-    } else if (current_half() == 0u) {
-        body_pairs[i].xy = uvec2(pair_base, pair_found);
-    } else {
-        body_pairs[i].zw = uvec2(pair_base, pair_found);
-    }
+    bp_end(i);
 }

@@ -123,7 +123,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 TB_STRUCT(tb_gpu_params) {
     TB_VEC4 gravity;        /* xyz gravity (m/s^2), w time step dt (s) */
     TB_UVEC4 counts;        /* x body slots in use (high-water mark), y shape count, z solver
-                               substeps, w reserved */
+                               substeps, w bodies created and destroyed since the world began
+                               (a change says the set of bodies changed) */
     TB_VEC4 limits;         /* x largest rotation per step (rad), y z w reserved */
     TB_UVEC4 body_dispatch; /* xyz: VkDispatchIndirectCommand covering counts.x bodies; w reserved */
     TB_UVEC4 capacity;      /* x pair capacity (one half), y grid table mask (size - 1),
@@ -179,6 +180,18 @@ TB_STRUCT(tb_gpu_push) {
     TB_UVEC4 args;            /* x colour (or round), y iteration (or sub-round), z flags (or
                                  sub-rounds), w colouring pass (its parity picks the work list) */
 };
+
+/* Push constants of the broadphases' own kernels (src/broadphase): their buffers are passed
+ * as device addresses, so a broadphase needs no binding of the world's set. */
+TB_STRUCT(tb_gpu_broadphase_push) {
+    TB_UVEC4 args;            /* x mode (TB_BROADPHASE_COUNT / _WRITE for the pair search; other
+                                 kernels their own), y z w kernel-defined */
+    TB_UVEC4 address[4];      /* eight device addresses as (low, high) pairs in xy and zw,
+                                 kernel-defined */
+};
+/* Modes of a pair search (args.x): count each finder's pairs, or write them. */
+#define TB_BROADPHASE_COUNT     TB_U(0)
+#define TB_BROADPHASE_WRITE     TB_U(1)
 
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed
  * as push constants, each as a (low, high) uint pair so no shader needs int64; element

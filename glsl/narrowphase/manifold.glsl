@@ -57,16 +57,23 @@ struct np_target {
     uvec4 prev_features;
 };
 
-// Last step's pair (a, b): a owned its pairs of that half as one run, which body_pairs[a]
-// locates (x, y for even halves, z, w for odd ones; counts are 0 before the first step).
-uint np_find_previous(uint a, uint b, uint prev_half)
+// Last step's pair (a, b) in the run of pairs its finder found (the finder is a or b;
+// src/broadphase/broadphase.h), which body_pairs[finder] locates (x, y for even halves,
+// z, w for odd ones; counts are 0 before the first step).
+uint np_find_in_run(uint finder, uint a, uint b, uint prev_half)
 {
-    uvec4 owned = body_pairs[a];
+    uvec4 owned = body_pairs[finder];
     uvec2 run = prev_half == 0u ? owned.xy : owned.zw;
     uint first = prev_half * params.capacity.x + run.x;
     for (uint i = 0u; i < run.y; i++)
         if (pairs[first + i].xy == uvec2(a, b)) return run.x + i;
     return NP_NONE;
+}
+
+uint np_find_previous(uint a, uint b, uint prev_half)
+{
+    uint found = np_find_in_run(a, a, b, prev_half);
+    return found != NP_NONE ? found : np_find_in_run(b, a, b, prev_half);
 }
 
 np_target np_target_make(uint slot, uint a, uint b, uint prev_half)

@@ -121,6 +121,7 @@ static tb_body_id commit(tb_world* w, const tb_body_def* d, const resolved_body*
 {
     uint32_t slot;
     tb_slots_take(&w->body_slots, &slot);
+    w->body_set_version++;
     tb_body_record* b = &w->bodies[slot];
     uint16_t generation = (uint16_t)(b->generation + 1);
     *b = (tb_body_record){ .generation = generation ? generation : 1, .alive = 1,
@@ -183,6 +184,7 @@ tb_result tb_body_destroy(tb_world* w, tb_body_id id)
     tb_gpu_uvec4* info = (tb_gpu_uvec4*)tb_body_store_write(&w->store, TB_ARRAY_INFO, slot);
     *info = (tb_gpu_uvec4){ 0, 0, 0, 0 };
     tb_slots_give(&w->body_slots, slot);
+    w->body_set_version++;
     return TB_OK;
 }
 

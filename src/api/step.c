@@ -1,6 +1,6 @@
 /* The step as a graph of stages, built from the kernels and the parallel primitives.
  *
- * Order (DESIGN.md §1): bounds -> grid broadphase -> narrowphase -> colouring -> solver
+ * Order (DESIGN.md §1): bounds -> broadphase -> narrowphase -> colouring -> solver
  * data -> forces -> solver -> integration. The solver data (restitution) comes before the
  * step's velocities change, so a bounce reflects the speed the body hit with. Forces
  * (damping, the solver records) come after the pairs and colours are known, so a step that
@@ -15,10 +15,6 @@ typedef struct kernel_def { const char* shader; uint32_t workgroup; } kernel_def
 static const kernel_def kernel_defs[TB_KERNEL_COUNT] = {
     [TB_KERNEL_STEP_BEGIN] = { "step/begin", TB_WORKGROUP_SIZE },
     [TB_KERNEL_WORLD_AABB] = { "broadphase/world_aabb", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_GRID_ASSIGN] = { "broadphase/grid_assign", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_GRID_RANGES] = { "broadphase/grid_ranges", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_GRID_PAIRS] = { "broadphase/grid_pairs", TB_WORKGROUP_SIZE },
-    [TB_KERNEL_PAIR_CHECK] = { "broadphase/pair_check", TB_WORKGROUP_SIZE },
     [TB_KERNEL_CONTACTS] = { "narrowphase/contacts", TB_WORKGROUP_SIZE },
     [TB_KERNEL_HULL_POINTS] = { "narrowphase/hull_points", TB_WORKGROUP_SIZE },
     [TB_KERNEL_KEEP_CONTACTS] = { "narrowphase/keep", TB_WORKGROUP_SIZE },
@@ -81,38 +77,14 @@ static void end_stage(builder* b, const char* name)
     tb_pass_list_free(&b->list);
 }
 
-static tb_gpu_ptr counter_ptr(tb_world* w, VkDeviceSize offset)
-{
-    return tb_gpu_ptr_of(&w->sim.counters, offset);
-}
-
-#define COUNTER_OFFSET(member, word) (offsetof(tb_gpu_counters, member) + 4 * (word))
-
 /* ---- stages ---------------------------------------------------------------------------- */
 
-static void grid_stage(builder* b)
+/* The world's broadphase (src/broadphase): the stage broadphase/<name>. */
+static void broadphase_stage(builder* b)
 {
     tb_world* w = b->w;
-    tb_sim* sim = &w->sim;
-    tb_gpu_ptr entries = counter_ptr(w, COUNTER_OFFSET(grid, 2));
-    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
-    per_body(b, TB_KERNEL_GRID_ASSIGN, 0);
-    if (!b->r) b->r = tb_prims_sort(&w->prims, &b->list, tb_gpu_ptr_of(&sim->body[TB_SIM_GRID_KEYS], 0),
-                                    tb_gpu_ptr_of(&sim->body[TB_SIM_GRID_BODIES], 0), entries,
-                                    sim->body_capacity, sim->table_bits + 1, scratch);
-    if (!b->r) b->r = tb_prims_compact(&w->prims, &b->list,
-                                       tb_gpu_ptr_of(&sim->body[TB_SIM_LARGE_FLAGS], 0),
-                                       tb_gpu_ptr_of(&sim->body[TB_SIM_LARGE_LIST], 0), entries,
-                                       sim->body_capacity, counter_ptr(w, COUNTER_OFFSET(grid, 1)),
-                                       scratch);
-    per_body(b, TB_KERNEL_GRID_RANGES, 0);
-    per_body(b, TB_KERNEL_GRID_PAIRS, 0);
-    tb_gpu_ptr counts = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_PAIR_COUNT], 0);
-    if (!b->r) b->r = tb_prims_scan(&w->prims, &b->list, counts, counts, entries, sim->body_capacity,
-                                    counter_ptr(w, COUNTER_OFFSET(state, 2)), scratch);
-    once(b, TB_KERNEL_PAIR_CHECK);
-    per_body(b, TB_KERNEL_GRID_PAIRS, 1);
-    end_stage(b, "broadphase/grid");
+    if (!b->r) b->r = w->broadphase->record(w, &b->list);
+    end_stage(b, w->broadphase->stage);
 }
 
 /* Manifolds of every pair, then the points of the touching hull pairs (see contacts.comp),
@@ -164,7 +136,7 @@ tb_result tb_step_build(tb_world* w)
     builder b = { .w = w };
     single(&b, TB_KERNEL_STEP_BEGIN, TB_DISPATCH_FIXED, "step/begin");
     single(&b, TB_KERNEL_WORLD_AABB, TB_DISPATCH_PER_BODY, "broadphase/world_aabb");
-    grid_stage(&b);
+    broadphase_stage(&b);
     narrowphase_stage(&b);
     colour_stage(&b);
     prepare_stage(&b);

@@ -103,6 +103,9 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
                             w->store.capacity, pairs);
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
+    if (!r) r = tb_broadphase_shared_create(w);
+    if (!r) r = w->broadphase->create(w);
+    if (!r) r = w->broadphase->reserve(w, w->store.capacity);
     if (!r) r = tb_step_build(w);
     return r;
 }
@@ -114,6 +117,8 @@ tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* ex
     if (!out) return tb_fail(&early, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
     *out = NULL;
     tb_result r = check_world_def(&early, def);
+    tb_broadphase broadphase = TB_BROADPHASE_GRID;
+    if (!r) r = tb_broadphase_resolve(&early, def->broadphase, &broadphase);
     tb_world* w = r ? NULL : calloc(1, sizeof *w);
     if (!r && !w) r = tb_fail(&early, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     if (r) { tb_diag_set_create_error(early.message); return r; }
@@ -128,6 +133,8 @@ tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* ex
     w->contact_hertz = def->contact_hertz;
     w->contact_damping_ratio = def->contact_damping_ratio;
     w->contact_push_speed = def->contact_push_speed;
+    w->broadphase_kind = broadphase;
+    w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
@@ -155,6 +162,8 @@ void tb_world_destroy(tb_world* w)
     if (w->gpu.device) {
         tb_graph_destroy(&w->graph);
         tb_step_kernels_destroy(w);
+        if (w->broadphase) w->broadphase->destroy(w);
+        tb_broadphase_shared_destroy(w);
         tb_solver_destroy(&w->solver);
         tb_sim_destroy(&w->sim);
         tb_prims_destroy(&w->prims);
@@ -199,6 +208,7 @@ tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
     int grew = 0;
     tb_result r = tb_body_store_reserve(&w->store, &w->transfer, slots, &grew);
     if (!r && grew) r = tb_sim_reserve_bodies(&w->sim, &w->transfer, w->store.capacity);
+    if (!r && grew) r = w->broadphase->reserve(w, w->store.capacity);
     if (grew) {
         w->step_built = 0;
         w->buffer_generation++;
@@ -230,7 +240,7 @@ static void write_params(tb_world* w, float dt)
     uint32_t x = groups < max_x ? groups : max_x;
     tb_gpu_params* p = &w->params;
     p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
-    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, w->substeps, 0 };
+    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, w->substeps, w->body_set_version };
     p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
@@ -446,6 +456,7 @@ tb_result tb_world_get_stats(const tb_world* w, tb_world_stats* out)
     out->batch_count = c->solver.z;
     out->colour_rounds = w->colour_rounds;
     out->steps_redone = w->steps_redone;
+    out->broadphase = w->broadphase->name;
     out->buffer_growths += w->sim.growths;
     out->stage_count = w->graph.count;
     for (uint32_t i = 0; i < w->graph.count; i++) {

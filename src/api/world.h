@@ -3,6 +3,7 @@
 #define TB_WORLD_H
 
 #include "api/diag.h"
+#include "broadphase/broadphase.h"
 #include "geom/hull.h"
 #include "gpu/bodies.h"
 #include "gpu/graph.h"
@@ -19,8 +20,7 @@
 
 /// The step's compute kernels (src/api/step.c names their shaders).
 typedef enum tb_kernel {
-    TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_GRID_ASSIGN, TB_KERNEL_GRID_RANGES,
-    TB_KERNEL_GRID_PAIRS, TB_KERNEL_PAIR_CHECK, TB_KERNEL_CONTACTS, TB_KERNEL_HULL_POINTS,
+    TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_CONTACTS, TB_KERNEL_HULL_POINTS,
     TB_KERNEL_KEEP_CONTACTS,
     TB_KERNEL_APPLY_FORCES,
     TB_KERNEL_INTEGRATE, TB_KERNEL_STEP_END, TB_KERNEL_COUNT
@@ -80,6 +80,11 @@ struct tb_world {
     tb_sim sim;
     tb_solver solver;
     VkPipeline kernels[TB_KERNEL_COUNT];
+    tb_broadphase broadphase_kind;         ///< never TB_BROADPHASE_DEFAULT
+    const tb_broadphase_ops* broadphase;
+    void* broadphase_state;                ///< the broadphase's own (kernels, buffers)
+    VkPipeline pair_check;                 ///< broadphase/pair_check, shared by all
+    uint32_t body_set_version;             ///< bodies created and destroyed so far
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
     uint32_t substeps, solver_iterations;

@@ -1,0 +1,110 @@
+/* What every broadphase shares: the choice, the pair output's passes, push constants. */
+#include "broadphase/broadphase.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "api/world.h"
+
+/* The library's choice for TB_BROADPHASE_DEFAULT (see README, performance). */
+#define DEFAULT_BROADPHASE TB_BROADPHASE_GRID
+
+static const tb_broadphase_ops* const ops_table[] = {
+    [TB_BROADPHASE_GRID] = &tb_broadphase_grid,
+    [TB_BROADPHASE_SAP] = NULL,
+    [TB_BROADPHASE_LBVH] = NULL,
+    [TB_BROADPHASE_ISAP] = NULL,
+};
+#define KINDS (sizeof ops_table / sizeof ops_table[0])
+
+const char* tb_broadphase_name(tb_broadphase kind)
+{
+    static const char* const names[] = { "default", "grid", "sap", "lbvh", "isap" };
+    return (uint32_t)kind < sizeof names / sizeof names[0] ? names[kind] : NULL;
+}
+
+const tb_broadphase_ops* tb_broadphase_ops_of(tb_broadphase kind)
+{
+    return kind > TB_BROADPHASE_DEFAULT && (uint32_t)kind < KINDS ? ops_table[kind] : NULL;
+}
+
+tb_result tb_broadphase_resolve(tb_diag* diag, tb_broadphase asked, tb_broadphase* out)
+{
+    *out = asked;
+    if (asked != TB_BROADPHASE_DEFAULT) {
+        if (tb_broadphase_ops_of(asked)) return TB_OK;
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "broadphase %d is not one of "
+                       "TB_BROADPHASE_GRID, _SAP, _LBVH or _ISAP", (int)asked);
+    }
+    *out = DEFAULT_BROADPHASE;
+    const char* env = getenv("TUMBLE_BROADPHASE");
+    if (!env || !*env) return TB_OK;
+    for (uint32_t k = 1; k < KINDS; k++)
+        if (strcasecmp(env, tb_broadphase_name((tb_broadphase)k)) == 0 && ops_table[k]) {
+            *out = (tb_broadphase)k;
+            return TB_OK;
+        }
+    return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "TUMBLE_BROADPHASE is '%s'; it must be "
+                   "grid, sap, lbvh or isap", env);
+}
+
+tb_result tb_broadphase_shared_create(tb_world* w)
+{
+    return tb_pipeline_create(&w->pipelines, "broadphase/pair_check", TB_WORKGROUP_SIZE,
+                              &w->pair_check);
+}
+
+void tb_broadphase_shared_destroy(tb_world* w)
+{
+    if (w->pair_check) vkDestroyPipeline(w->gpu.device, w->pair_check, NULL);
+    w->pair_check = VK_NULL_HANDLE;
+}
+
+tb_pass tb_broadphase_pass(VkPipeline pipeline, tb_dispatch_rule rule, uint32_t groups,
+                           tb_gpu_ptr indirect, const tb_gpu_broadphase_push* push)
+{
+    tb_pass pass;
+    memset(&pass, 0, sizeof pass);
+    pass.pipeline = pipeline;
+    pass.rule = rule;
+    pass.groups[0] = groups ? groups : 1;
+    pass.groups[1] = pass.groups[2] = 1;
+    pass.indirect = indirect.buffer;
+    pass.indirect_offset = indirect.offset;
+    pass.push_size = sizeof *push;
+    memcpy(pass.push, push, sizeof *push);
+    return pass;
+}
+
+tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline,
+                            tb_dispatch_rule rule, uint32_t groups, tb_gpu_ptr indirect,
+                            const tb_gpu_broadphase_push* push)
+{
+    tb_pass pass = tb_broadphase_pass(pipeline, rule, groups, indirect, push);
+    return tb_pass_list_add(list, &w->diag, &pass);
+}
+
+tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
+                                           const tb_pass* count_pass, const tb_pass* write_pass)
+{
+    tb_sim* sim = &w->sim;
+    tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr total = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, state) + 8);
+    tb_gpu_ptr counts = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_PAIR_COUNT], 0);
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    tb_pass check = tb_pass_with_args(w->pair_check, TB_DISPATCH_FIXED, VK_NULL_HANDLE, 0, 0, 0, 0);
+    tb_result r = tb_pass_list_add(list, &w->diag, count_pass);
+    if (!r) r = tb_prims_scan(&w->prims, list, counts, counts, slots, sim->body_capacity, total,
+                              scratch);
+    if (!r) r = tb_pass_list_add(list, &w->diag, &check);
+    if (!r) r = tb_pass_list_add(list, &w->diag, write_pass);
+    return r;
+}
+
+void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address)
+{
+    uint32_t lo = (uint32_t)address, hi = (uint32_t)(address >> 32);
+    if (half) { slot->z = lo; slot->w = hi; }
+    else { slot->x = lo; slot->y = hi; }
+}

@@ -1,0 +1,81 @@
+/* The broadphase: from the bodies' world AABBs to this step's pair list.
+ *
+ * Every broadphase writes the same output, so the narrowphase, the warm start and the
+ * solver do not know which one ran:
+ * - each pair whose AABBs overlap (each grown by half the contact margin) and that is not
+ *   static-static, exactly once, as pairs[half base + p] = (a, b, TB_NO_COLOUR, 0);
+ * - grouped by a "finder" body, which is a or b of each of its pairs: body_pairs[finder]
+ *   holds the run's (offset, count) of this half (xy for even steps, zw for odd), for every
+ *   body slot (count 0 when it found none), so last step's pair (a, b) is found in the run
+ *   of a or of b (glsl/narrowphase/manifold.glsl);
+ * - a pair's order (a, b) depends on the two bodies only, never on where they were found,
+ *   so a pair keeps its orientation (and its normal's sign) from step to step;
+ * - counters.state.z the number of pairs; on overflow the step is abandoned through
+ *   broadphase/pair_check (TB_ABORT_PAIRS) and the host grows the pair buffers.
+ * The usual way there is two passes over the same search (glsl/broadphase/pairs.glsl):
+ * count each finder's pairs, scan the counts into offsets, check the capacity, write
+ * (tb_broadphase_record_pair_output). Pairs are then deterministic: in finder order.
+ *
+ * Each broadphase is a tb_broadphase_ops: it owns its kernels and buffers (device
+ * addresses through push constants, tb_gpu_broadphase_push, so none needs a binding of the
+ * world's set), grows them with the body capacity, and records its passes as the stage
+ * "broadphase/<name>".
+ */
+#ifndef TB_BROADPHASE_H
+#define TB_BROADPHASE_H
+
+#include "gpu/graph.h"
+#include "gpu/prims.h"
+#include "layout.h"
+#include "tumble.h"
+
+typedef struct tb_world tb_world;
+
+typedef struct tb_broadphase_ops {
+    const char* name;                 ///< "grid", "sap", "lbvh" or "isap"
+    const char* stage;                ///< its stage's name: "broadphase/<name>"
+    /// Create kernels and buffers for the world's current body capacity; may set
+    /// w->broadphase_state.
+    tb_result (*create)(tb_world* w);
+    /// The body capacity grew to `capacity` (also called at creation after create).
+    tb_result (*reserve)(tb_world* w, uint32_t capacity);
+    /// Append the broadphase's passes (world_aabb has run; the pair output follows).
+    tb_result (*record)(tb_world* w, tb_pass_list* list);
+    void (*destroy)(tb_world* w);
+} tb_broadphase_ops;
+
+extern const tb_broadphase_ops tb_broadphase_grid;
+extern const tb_broadphase_ops tb_broadphase_sap;
+extern const tb_broadphase_ops tb_broadphase_lbvh;
+extern const tb_broadphase_ops tb_broadphase_isap;
+
+/// The operations of a broadphase (TB_BROADPHASE_DEFAULT resolved first), or NULL.
+const tb_broadphase_ops* tb_broadphase_ops_of(tb_broadphase kind);
+/// What TB_BROADPHASE_DEFAULT means now (the environment variable, else the default).
+/// Fails with a message when TUMBLE_BROADPHASE names none.
+tb_result tb_broadphase_resolve(tb_diag* diag, tb_broadphase asked, tb_broadphase* out);
+
+/// Shared kernels of the pair output (broadphase/pair_check).
+tb_result tb_broadphase_shared_create(tb_world* w);
+void tb_broadphase_shared_destroy(tb_world* w);
+
+/// A pass of a broadphase kernel with the given push constants, dispatched per body slot
+/// (TB_DISPATCH_PER_BODY), FIXED (`groups` workgroups) or INDIRECT (the command at
+/// `indirect`; unused otherwise).
+tb_pass tb_broadphase_pass(VkPipeline pipeline, tb_dispatch_rule rule, uint32_t groups,
+                           tb_gpu_ptr indirect, const tb_gpu_broadphase_push* push);
+/// Append such a pass to the list.
+tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline,
+                            tb_dispatch_rule rule, uint32_t groups, tb_gpu_ptr indirect,
+                            const tb_gpu_broadphase_push* push);
+
+/// The pair output of a two-pass search: `count_pass` (which must write every slot's
+/// body_pair_count), the scan of the counts into offsets, pair_check, then `write_pass`
+/// (which writes the pairs and body_pairs of every slot).
+tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
+                                           const tb_pass* count_pass, const tb_pass* write_pass);
+
+/// A device address as the (low, high) pair the shaders take.
+void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address);
+
+#endif
