@@ -193,6 +193,41 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 #define TB_BROADPHASE_COUNT     TB_U(0)
 #define TB_BROADPHASE_WRITE     TB_U(1)
 
+/* 1-axis sort and sweep (src/broadphase/sap.c, glsl/broadphase/sap*). Every kernel takes
+ * the same tb_gpu_broadphase_push; its device addresses, by index (address[i / 2], xy for
+ * even i, zw for odd): */
+#define TB_SAP_KEYS             0 /* uint[cap]: sort key (ordered minimum on the axis) */
+#define TB_SAP_ORDER            1 /* uint[cap]: body slot, sorted with the keys */
+#define TB_SAP_BOX_MIN          2 /* vec4[cap]: minimum corner in sorted order, w slot bits */
+#define TB_SAP_BOX_MAX          3 /* vec4[cap]: maximum corner in sorted order, w TB_SAP_BOX_* */
+#define TB_SAP_LARGE_FLAGS      4 /* uint[cap]: 1 for a static body kept out of the sweep */
+#define TB_SAP_LARGE_LIST       5 /* uint[cap]: those bodies, in slot order */
+#define TB_SAP_PARTIALS         6 /* tb_gpu_sap_partial[workgroups of sap_stats] */
+#define TB_SAP_HEADER           7 /* tb_gpu_sap_header */
+/* Sort key of the slots that stay out of the sweep (dead, large): after every real key. */
+#define TB_SAP_KEY_OUT          TB_U(0xffffffff)
+/* Flags of a sorted box (box_max.w bits). */
+#define TB_SAP_BOX_DYNAMIC      TB_U(1)  /* the body is dynamic */
+#define TB_SAP_BOX_OUT          TB_U(2)  /* dead or large: not swept, never a candidate */
+/* A static body whose largest side exceeds this many times the largest dynamic side (and
+ * the contact margin) is large: every dynamic body tests it instead of the sweep. */
+#define TB_SAP_LARGE_FACTOR     4.0
+/* Threads per workgroup of sap_axis (one workgroup folds every sap_stats partial). */
+#define TB_SAP_AXIS_GROUP_SIZE  256
+
+/* The spread of the AABB centres of one workgroup of sap_stats: count, mean and sum of
+ * squared deviations per axis (Chan et al.'s pairwise update folds them without the
+ * cancellation of sum(c^2) - sum(c)^2 / n far from the origin). */
+TB_STRUCT(tb_gpu_sap_partial) {
+    TB_VEC4 mean;             /* xyz mean centre, w bodies counted */
+    TB_VEC4 m2;               /* xyz sum of squared deviations from the mean, w unused */
+};
+
+TB_STRUCT(tb_gpu_sap_header) {
+    TB_UVEC4 state;           /* x sweep axis (0, 1, 2), y large bodies (the compaction's
+                                 count), z w unused */
+};
+
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed
  * as push constants, each as a (low, high) uint pair so no shader needs int64; element
  * counts are read on the GPU from the uint at a `count` address and clamped to the largest

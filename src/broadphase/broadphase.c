@@ -12,7 +12,7 @@
 
 static const tb_broadphase_ops* const ops_table[] = {
     [TB_BROADPHASE_GRID] = &tb_broadphase_grid,
-    [TB_BROADPHASE_SAP] = NULL,
+    [TB_BROADPHASE_SAP] = &tb_broadphase_sap,
     [TB_BROADPHASE_LBVH] = NULL,
     [TB_BROADPHASE_ISAP] = NULL,
 };

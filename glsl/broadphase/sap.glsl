@@ -1,0 +1,67 @@
+// The 1-axis sort and sweep (src/broadphase/sap.c): every body's AABB is sorted by its
+// minimum along the axis where the centres spread most, and each body sweeps forward
+// through the sorted boxes while their minima can still reach its maximum. A pair is found
+// by whichever of its two bodies comes first in that order, so once.
+//
+// Static bodies much larger than any dynamic one ("large": planes, ground boxes) stay out
+// of the sort, since one of them would sweep over everything; every dynamic body tests
+// their list instead, as the grid does.
+#ifndef TB_SAP_GLSL
+#define TB_SAP_GLSL
+
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+#include "pairs.glsl"
+
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer SapUints { uint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapVec4s { vec4 v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapPartials {
+    tb_gpu_sap_partial v[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapHeader {
+    tb_gpu_sap_header h;
+};
+
+// Device address number `index` (TB_SAP_*) of the push constants.
+uvec2 sap_address(uint index)
+{
+    uvec4 pair = push.address[index >> 1];
+    return (index & 1u) == 0u ? pair.xy : pair.zw;
+}
+
+SapUints sap_uints(uint index) { return SapUints(sap_address(index)); }
+SapVec4s sap_vec4s(uint index) { return SapVec4s(sap_address(index)); }
+SapHeader sap_header() { return SapHeader(sap_address(TB_SAP_HEADER)); }
+
+// A static body much larger than every dynamic one (see TB_SAP_LARGE_FACTOR).
+bool sap_is_large(uint body)
+{
+    if (body_is(body, TB_BODY_FLAG_DYNAMIC)) return false;
+    vec3 side = body_aabb_max[body].xyz - body_aabb_min[body].xyz;
+    float largest_dynamic = max(uintBitsToFloat(counters.grid.x), params.contact.x);
+    return max(side.x, max(side.y, side.z)) > float(TB_SAP_LARGE_FACTOR) * largest_dynamic;
+}
+
+// Bodies that take part in the sort and sweep: alive and not large.
+bool sap_is_swept(uint body)
+{
+    return body_is(body, TB_BODY_FLAG_ALIVE) && !sap_is_large(body);
+}
+
+// Floats to uints of the same order (negative ones reversed below the positive ones).
+uint sap_ordered_bits(float f)
+{
+    uint u = floatBitsToUint(f);
+    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+}
+
+// The same test as aabbs_touch (pairs.glsl), on boxes in registers: the sweep's stopping
+// rule uses its very expression on the axis, so the two never disagree by a rounding.
+bool sap_boxes_touch(vec3 min_a, vec3 max_a, vec3 min_b, vec3 max_b)
+{
+    float m = params.contact.x;
+    return !any(greaterThan(min_a - m, max_b)) && !any(greaterThan(min_b - m, max_a));
+}
+
+#endif

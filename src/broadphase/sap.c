@@ -1,0 +1,130 @@
+/* The parallel 1-axis sort and sweep broadphase (glsl/broadphase/sap*.comp), after the
+ * GDC 2013 Bullet 3 talk: choose the axis along which the AABB centres spread most, sort
+ * the boxes by their minimum on it, and let each body sweep forward through the sorted
+ * boxes that can still reach it. Large static bodies (planes, ground boxes) stay out of the
+ * sort and every dynamic body tests their list.
+ *
+ * Passes: sap_stats (per body) and sap_axis (one workgroup) choose the axis; sap_keys
+ * writes the sort entries; the radix sort orders them (32 key bits); the compaction lists
+ * the large bodies; sap_gather copies the boxes into sorted order; sap_sweep counts and then
+ * writes the pairs around the shared scan and capacity check. */
+#include "broadphase/broadphase.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "api/world.h"
+
+#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
+
+/* One buffer per TB_SAP_* address, in that order. */
+enum { SAP_BUFFERS = TB_SAP_HEADER + 1 };
+
+typedef struct sap_state {
+    VkPipeline stats, axis, keys, gather, sweep;
+    tb_buffer buffers[SAP_BUFFERS];
+} sap_state;
+
+static void release_buffers(tb_world* w, sap_state* s)
+{
+    for (int b = 0; b < SAP_BUFFERS; b++) tb_buffer_destroy(&w->memory, &s->buffers[b]);
+}
+
+static void sap_destroy(tb_world* w)
+{
+    sap_state* s = w->broadphase_state;
+    if (!s) return;
+    VkPipeline all[] = { s->stats, s->axis, s->keys, s->gather, s->sweep };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    release_buffers(w, s);
+    free(s);
+    w->broadphase_state = NULL;
+}
+
+static tb_result sap_create(tb_world* w)
+{
+    sap_state* s = calloc(1, sizeof *s);
+    if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    w->broadphase_state = s;
+    tb_pipelines* p = &w->pipelines;
+    tb_result r = tb_pipeline_create(p, "broadphase/sap_stats", TB_WORKGROUP_SIZE, &s->stats);
+    if (!r) r = tb_pipeline_create(p, "broadphase/sap_axis", TB_SAP_AXIS_GROUP_SIZE, &s->axis);
+    if (!r) r = tb_pipeline_create(p, "broadphase/sap_keys", TB_WORKGROUP_SIZE, &s->keys);
+    if (!r) r = tb_pipeline_create(p, "broadphase/sap_gather", TB_WORKGROUP_SIZE, &s->gather);
+    if (!r) r = tb_pipeline_create(p, "broadphase/sap_sweep", TB_WORKGROUP_SIZE, &s->sweep);
+    return r;
+}
+
+/* Bytes of the buffer behind address `index` for `capacity` body slots. */
+static VkDeviceSize buffer_bytes(int index, uint32_t capacity)
+{
+    VkDeviceSize n = capacity ? capacity : 1;
+    switch (index) {
+    case TB_SAP_BOX_MIN:
+    case TB_SAP_BOX_MAX: return n * 16;
+    case TB_SAP_PARTIALS:
+        return (n + TB_WORKGROUP_SIZE - 1) / TB_WORKGROUP_SIZE * sizeof(tb_gpu_sap_partial);
+    case TB_SAP_HEADER: return sizeof(tb_gpu_sap_header);
+    default: return n * 4;
+    }
+}
+
+/* Nothing in the buffers outlives a step, so growing them is replacing them. The world
+ * grows the sim's buffers first, which waits for the device, so no step still uses ours. */
+static tb_result sap_reserve(tb_world* w, uint32_t capacity)
+{
+    sap_state* s = w->broadphase_state;
+    release_buffers(w, s);
+    tb_result r = TB_OK;
+    for (int b = 0; b < SAP_BUFFERS && !r; b++)
+        r = tb_buffer_create(&w->memory, buffer_bytes(b, capacity), USAGE, 0, &s->buffers[b]);
+    return r;
+}
+
+static tb_gpu_ptr buffer_ptr(const sap_state* s, int index, VkDeviceSize offset)
+{
+    return tb_gpu_ptr_of(&s->buffers[index], offset);
+}
+
+/* The push constants of every sap kernel: mode, and the addresses of all its buffers. */
+static tb_gpu_broadphase_push push_of(const sap_state* s, uint32_t mode)
+{
+    tb_gpu_broadphase_push push;
+    memset(&push, 0, sizeof push);
+    push.args.x = mode;
+    for (int b = 0; b < SAP_BUFFERS; b++)
+        tb_broadphase_put_address(&push.address[b / 2], b % 2, s->buffers[b].address);
+    return push;
+}
+
+static tb_result sap_record(tb_world* w, tb_pass_list* list)
+{
+    sap_state* s = w->broadphase_state;
+    tb_sim* sim = &w->sim;
+    tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    tb_gpu_ptr large_count = buffer_ptr(s, TB_SAP_HEADER, offsetof(tb_gpu_sap_header, state) + 4);
+    tb_gpu_ptr none = { 0 };
+    tb_gpu_broadphase_push count = push_of(s, TB_BROADPHASE_COUNT);
+    tb_gpu_broadphase_push write = push_of(s, TB_BROADPHASE_WRITE);
+    uint32_t cap = sim->body_capacity;
+    tb_result r = tb_broadphase_add(w, list, s->stats, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_broadphase_add(w, list, s->axis, TB_DISPATCH_FIXED, 1, none, &count);
+    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_prims_sort(&w->prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
+                              buffer_ptr(s, TB_SAP_ORDER, 0), slots, cap, 32, scratch);
+    if (!r) r = tb_prims_compact(&w->prims, list, buffer_ptr(s, TB_SAP_LARGE_FLAGS, 0),
+                                 buffer_ptr(s, TB_SAP_LARGE_LIST, 0), slots, cap, large_count,
+                                 scratch);
+    if (!r) r = tb_broadphase_add(w, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
+    tb_pass count_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &count);
+    tb_pass write_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &write);
+    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
+    return r;
+}
+
+const tb_broadphase_ops tb_broadphase_sap = {
+    "sap", "broadphase/sap", sap_create, sap_reserve, sap_record, sap_destroy,
+};
