@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 // The sweep, run twice with the same traversal (pairs.glsl): count each finder's pairs,
@@ -10,44 +11,120 @@
 // on the axis (minima only grow along the order), and reports the pairs whose boxes
 // touch as (lower slot, higher slot). A dynamic body then tests the large static bodies.
 //
-// Load balance: the lanes of a subgroup sweep side by side, one candidate each per round,
-// while at least a quarter of them are still sweeping (reads of neighbouring lanes are
-// neighbouring addresses). The few long sweeps left then go one at a time through the
-// whole subgroup, a candidate per lane, so one long body does not hold its subgroup for
-// its whole span; ballots keep its pairs in candidate order, as a lone sweep would.
+// Three gears, each taking the candidates in order from where the last one stopped, so the
+// pairs of a finder come in candidate order whichever gear found them:
+// 1. tiles: the workgroup loads the next run of sorted boxes into shared memory together
+//    and every finder still sweeping tests them there (all lanes read the same box at
+//    once), while at least a quarter of the workgroup is sweeping;
+// 2. side by side: each lane reads its own next candidate, while at least a quarter of
+//    its subgroup is sweeping;
+// 3. together: the few long sweeps left go one at a time through the whole subgroup, a
+//    candidate per lane, ballots keeping the order, so one long body (a large dynamic one
+//    among small ones) does not hold its subgroup for its whole span.
 #include "world.glsl"
 #include "sap.glsl"
 
+const uint TILE = gl_WorkGroupSize.x;
+
+shared vec4 s_min[TILE];
+shared vec4 s_max[TILE];
+shared uint s_sweeping[TILE];   // per subgroup (there are at most TILE of them)
+
 uint axis;
+uint n;           // sorted entries
 SapVec4s box_min;
 SapVec4s box_max;
 
-// Whether the box at sorted position t (its min already read) pairs with a finder that
-// has box (fmin, fmax) and flags `fflags`: touching, not both static, t swept.
-bool pairs_with(vec4 fmin, vec4 fmax, uint fflags, vec4 tmin, uint t)
+// This invocation's finder: sorted position s, body i, box, flags; `open` while its
+// sweep goes on, `next` its next candidate.
+uint s;
+uint i;
+vec4 fmin;
+vec4 fmax;
+uint fflags;
+bool open;
+uint next;
+
+// Whether the box (tmin, tmax) at a candidate pairs with the finder (fmin, fmax, fflags):
+// swept, not both static, touching.
+bool pairs_with(vec4 amin, vec4 amax, uint aflags, vec4 tmin, vec4 tmax)
 {
-    vec4 tmax = box_max.v[t];
     uint tflags = floatBitsToUint(tmax.w);
     if ((tflags & TB_SAP_BOX_OUT) != 0u) return false;
-    if (((fflags | tflags) & TB_SAP_BOX_DYNAMIC) == 0u) return false;
-    return sap_boxes_touch(fmin.xyz, fmax.xyz, tmin.xyz, tmax.xyz);
+    if (((aflags | tflags) & TB_SAP_BOX_DYNAMIC) == 0u) return false;
+    return sap_boxes_touch(amin.xyz, amax.xyz, tmin.xyz, tmax.xyz);
 }
 
-// Whether a box of minimum `tmin` (or any later one) is beyond the finder's reach. The
-// expression is aabbs_touch's, so the sweep stops at no box that would touch.
-bool beyond(vec4 tmin, vec4 fmax)
+// Whether a box of minimum `tmin` (or any later one) is beyond the reach of a finder with
+// maximum `amax`. The expression is aabbs_touch's, so no touching box is left out.
+bool beyond(vec4 tmin, vec4 amax)
 {
-    return tmin[axis] - params.contact.x > fmax[axis];
+    return tmin[axis] - params.contact.x > amax[axis];
 }
 
-uvec4 ordered_pair(uint i, uint j)
+// One candidate of this invocation's own sweep: closes the sweep past its reach.
+void take(uint t, vec4 tmin, vec4 tmax)
 {
-    return uvec4(min(i, j), max(i, j), TB_NO_COLOUR, 0u);
+    if (t >= n || beyond(tmin, fmax)) {
+        open = false;
+        return;
+    }
+    if (pairs_with(fmin, fmax, fflags, tmin, tmax)) {
+        uint j = floatBitsToUint(tmin.w);
+        bp_report(min(i, j), max(i, j));
+    }
+    next = t + 1u;
 }
 
-// The long sweeps left to the lanes flagged in `open`, each shared by the whole subgroup
-// from its next candidate `next`. Subgroup-uniform control flow.
-void sweep_together(bool open, uint next, vec4 fmin, vec4 fmax, uint fflags, uint n)
+// Finders of the workgroup still sweeping. Workgroup-uniform control flow.
+uint workgroup_sweeping()
+{
+    uint mine = subgroupBallotBitCount(subgroupBallot(open));
+    if (subgroupElect()) s_sweeping[gl_SubgroupID] = mine;
+    barrier();
+    uint total = 0u;
+    for (uint g = 0u; g < gl_NumSubgroups; g++) total += s_sweeping[g];
+    barrier();   // s_sweeping may be written again after this
+    return total;
+}
+
+// Gear 1. Workgroup-uniform control flow.
+void sweep_tiles(uint first)
+{
+    for (uint tile = first + 1u; workgroup_sweeping() * 4u > TILE; tile += TILE) {
+        uint t = tile + gl_LocalInvocationIndex;
+        if (t < n) {
+            s_min[gl_LocalInvocationIndex] = box_min.v[t];
+            s_max[gl_LocalInvocationIndex] = box_max.v[t];
+        }
+        barrier();
+        // Lanes skip the candidates before the subgroup's first position together.
+        uint k = min(max(subgroupMin(open ? next : 0xffffffffu), tile) - tile, TILE);
+        for (; k < TILE && subgroupAny(open); k++) {
+            uint c = tile + k;
+            if (open && c >= next) take(c, s_min[k], s_max[k]);
+        }
+        barrier();   // the tile may be loaded again after this
+    }
+}
+
+// Gear 2. Subgroup-uniform control flow.
+void sweep_side_by_side()
+{
+    while (subgroupBallotBitCount(subgroupBallot(open)) * 4u > gl_SubgroupSize) {
+        if (open) {
+            vec4 tmin = vec4(0.0), tmax = vec4(0.0);
+            if (next < n) {   // never a load past n, even a speculated one
+                tmin = box_min.v[next];
+                tmax = box_max.v[next];
+            }
+            take(next, tmin, tmax);
+        }
+    }
+}
+
+// Gear 3. Subgroup-uniform control flow.
+void sweep_together()
 {
     uvec4 left = subgroupBallot(open);
     while (left != uvec4(0u)) {
@@ -63,36 +140,26 @@ void sweep_together(bool open, uint next, vec4 fmin, vec4 fmax, uint fflags, uin
             uint t = c + gl_SubgroupInvocationID;
             bool inside = t < n;
             vec4 tmin = vec4(0.0);
-            if (inside) tmin = box_min.v[t];   // never a load past n, even a speculated one
+            if (inside) tmin = box_min.v[t];
             inside = inside && !beyond(tmin, lmax);
-            bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, t);
+            bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, box_max.v[t]);
             uvec4 hits = subgroupBallot(hit);
             if (hit && bp_writing())
                 pairs[pair_half_base() + base + found + subgroupBallotExclusiveBitCount(hits)] =
-                    ordered_pair(floatBitsToUint(lmin.w), floatBitsToUint(tmin.w));
+                    uvec4(min(floatBitsToUint(lmin.w), floatBitsToUint(tmin.w)),
+                          max(floatBitsToUint(lmin.w), floatBitsToUint(tmin.w)),
+                          TB_NO_COLOUR, 0u);
             found += subgroupBallotBitCount(hits);
             if (!subgroupAll(inside)) break;
         }
-        if (gl_SubgroupInvocationID == lane) bp_found = found;
+        if (gl_SubgroupInvocationID == lane) {
+            bp_found = found;
+            open = false;
+        }
     }
 }
 
-// One round of a lone sweep: the candidate at `next`, reported when it pairs. Returns
-// whether the sweep goes on.
-bool sweep_step(uint i, vec4 fmin, vec4 fmax, uint fflags, uint n, inout uint next)
-{
-    if (next >= n) return false;
-    vec4 tmin = box_min.v[next];
-    if (beyond(tmin, fmax)) return false;
-    if (pairs_with(fmin, fmax, fflags, tmin, next)) {
-        uint j = floatBitsToUint(tmin.w);
-        bp_report(min(i, j), max(i, j));
-    }
-    next++;
-    return true;
-}
-
-void search_large(uint i, vec4 fmin, vec4 fmax)
+void search_large()
 {
     SapUints list = sap_uints(TB_SAP_LARGE_LIST);
     uint count = sap_header().h.state.y;
@@ -105,29 +172,31 @@ void search_large(uint i, vec4 fmin, vec4 fmax)
 
 void main()
 {
-    if (step_aborted()) return;
-    uint s = body_thread_index();
-    uint n = counters.grid.z;
+    if (step_aborted()) return;   // the whole workgroup returns together
+    n = counters.grid.z;
     axis = sap_header().h.state.x;
     box_min = sap_vec4s(TB_SAP_BOX_MIN);
     box_max = sap_vec4s(TB_SAP_BOX_MAX);
-    bool valid = s < n;   // invalid invocations still take part in the subgroup's work
-    vec4 fmin = vec4(0.0), fmax = vec4(0.0);
-    uint fflags = TB_SAP_BOX_OUT;
+    uint first = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * TILE;
+    s = first + gl_LocalInvocationIndex;
+    bool valid = s < n;   // invalid invocations still take part in the shared work
+    fmin = vec4(0.0);
+    fmax = vec4(0.0);
+    fflags = TB_SAP_BOX_OUT;
     if (valid) {
         fmin = box_min.v[s];
         fmax = box_max.v[s];
         fflags = floatBitsToUint(fmax.w);
     }
-    uint i = floatBitsToUint(fmin.w);
+    i = floatBitsToUint(fmin.w);
+    bp_found = 0u;
+    bp_base = 0u;
     if (valid) bp_begin(i);
-    bool open = (fflags & TB_SAP_BOX_OUT) == 0u;
-    uint next = s + 1u;
-    while (subgroupBallotBitCount(subgroupBallot(open)) * 4u > gl_SubgroupSize) {
-        if (open) open = sweep_step(i, fmin, fmax, fflags, n, next);
-    }
-    sweep_together(open, next, fmin, fmax, fflags, n);
-    if ((fflags & (TB_SAP_BOX_OUT | TB_SAP_BOX_DYNAMIC)) == TB_SAP_BOX_DYNAMIC)
-        search_large(i, fmin, fmax);
+    open = (fflags & TB_SAP_BOX_OUT) == 0u;
+    next = s + 1u;
+    sweep_tiles(first);
+    sweep_side_by_side();
+    sweep_together();
+    if ((fflags & (TB_SAP_BOX_OUT | TB_SAP_BOX_DYNAMIC)) == TB_SAP_BOX_DYNAMIC) search_large();
     if (valid) bp_end(i);
 }
