@@ -37,5 +37,7 @@ void main()
     for (uint u = 1u; u < gl_WorkGroupSize.x; u++) fold(mean, m2, s_mean[u], s_m2[u].xyz);
     uint axis = m2.y > m2.x ? 1u : 0u;
     if (m2.z > m2[axis]) axis = 2u;
-    sap_header().h.state.x = axis;
+    // The ends of the large bodies' run in the sorted order, until sap_gather finds them
+    // (when there are none, or no dead slots, nothing is past the last entry).
+    sap_header().h.state.xyz = uvec3(axis, params.counts.x, params.counts.x);
 }

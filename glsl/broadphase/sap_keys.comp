@@ -1,8 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// One sort entry per body slot: its AABB's minimum on the sweep axis as an ordered uint,
-// or TB_SAP_KEY_OUT (after every real key) for dead and large bodies; large ones are
-// flagged for the compaction that lists them.
+// One sort entry per body slot: its AABB's minimum on the sweep axis as an ordered uint;
+// large bodies and dead slots get keys after every real one, so the sort lists them too,
+// at its end.
 #include "world.glsl"
 #include "sap.glsl"
 
@@ -13,8 +13,9 @@ void main()
     bool alive = body_is(i, TB_BODY_FLAG_ALIVE);
     bool large = alive && sap_is_large(i);
     uint axis = sap_header().h.state.x;
-    sap_uints(TB_SAP_KEYS).v[i] = alive && !large ? sap_ordered_bits(body_aabb_min[i][axis])
-                                                  : TB_SAP_KEY_OUT;
+    uint key = TB_SAP_KEY_DEAD;
+    if (large) key = TB_SAP_KEY_LARGE;
+    else if (alive) key = sap_ordered_bits(body_aabb_min[i][axis]);
+    sap_uints(TB_SAP_KEYS).v[i] = key;
     sap_uints(TB_SAP_ORDER).v[i] = i;
-    sap_uints(TB_SAP_LARGE_FLAGS).v[i] = large ? 1u : 0u;
 }

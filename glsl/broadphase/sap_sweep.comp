@@ -31,7 +31,7 @@ shared vec4 s_max[TILE];
 shared uint s_sweeping[TILE];   // per subgroup (there are at most TILE of them)
 
 uint axis;
-uint n;           // sorted entries
+uint n;           // sorted entries that are swept (the large and dead ones follow)
 SapVec4s box_min;
 SapVec4s box_max;
 
@@ -159,27 +159,30 @@ void sweep_together()
     }
 }
 
+// The large static bodies, in the sorted order after the swept ones.
 void search_large()
 {
-    SapUints list = sap_uints(TB_SAP_LARGE_LIST);
-    uint count = sap_header().h.state.y;
-    for (uint l = 0u; l < count; l++) {
-        uint j = list.v[l];
-        if (sap_boxes_touch(fmin.xyz, fmax.xyz, body_aabb_min[j].xyz, body_aabb_max[j].xyz))
+    uint end = sap_header().h.state.z;
+    for (uint t = n; t < end; t++) {   // the same t in every lane: one read for them all
+        vec4 tmin = box_min.v[t];
+        if (sap_boxes_touch(fmin.xyz, fmax.xyz, tmin.xyz, box_max.v[t].xyz)) {
+            uint j = floatBitsToUint(tmin.w);
             bp_report(min(i, j), max(i, j));
+        }
     }
 }
 
 void main()
 {
     if (step_aborted()) return;   // the whole workgroup returns together
-    n = counters.grid.z;
-    axis = sap_header().h.state.x;
+    uvec4 header = sap_header().h.state;
+    axis = header.x;
+    n = header.y;
     box_min = sap_vec4s(TB_SAP_BOX_MIN);
     box_max = sap_vec4s(TB_SAP_BOX_MAX);
     uint first = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * TILE;
     s = first + gl_LocalInvocationIndex;
-    bool valid = s < n;   // invalid invocations still take part in the shared work
+    bool valid = s < counters.grid.z;   // others still take part in the shared work
     fmin = vec4(0.0);
     fmax = vec4(0.0);
     fflags = TB_SAP_BOX_OUT;

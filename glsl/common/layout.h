@@ -196,16 +196,17 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 /* 1-axis sort and sweep (src/broadphase/sap.c, glsl/broadphase/sap*). Every kernel takes
  * the same tb_gpu_broadphase_push; its device addresses, by index (address[i / 2], xy for
  * even i, zw for odd): */
-#define TB_SAP_KEYS             0 /* uint[cap]: sort key (ordered minimum on the axis) */
+#define TB_SAP_KEYS             0 /* uint[cap]: sort key (TB_SAP_KEY_* or the ordered minimum) */
 #define TB_SAP_ORDER            1 /* uint[cap]: body slot, sorted with the keys */
 #define TB_SAP_BOX_MIN          2 /* vec4[cap]: minimum corner in sorted order, w slot bits */
 #define TB_SAP_BOX_MAX          3 /* vec4[cap]: maximum corner in sorted order, w TB_SAP_BOX_* */
-#define TB_SAP_LARGE_FLAGS      4 /* uint[cap]: 1 for a static body kept out of the sweep */
-#define TB_SAP_LARGE_LIST       5 /* uint[cap]: those bodies, in slot order */
-#define TB_SAP_PARTIALS         6 /* tb_gpu_sap_partial[workgroups of sap_stats] */
-#define TB_SAP_HEADER           7 /* tb_gpu_sap_header */
-/* Sort key of the slots that stay out of the sweep (dead, large): after every real key. */
-#define TB_SAP_KEY_OUT          TB_U(0xffffffff)
+#define TB_SAP_PARTIALS         4 /* tb_gpu_sap_partial[workgroups of sap_stats] */
+#define TB_SAP_HEADER           5 /* tb_gpu_sap_header */
+#define TB_SAP_ADDRESSES        6
+/* Sort keys of the slots that stay out of the sweep, after every real key (the ordered
+ * bits of a float that is not a NaN are at most 0xff800000): large bodies, then dead. */
+#define TB_SAP_KEY_LARGE        TB_U(0xfffffffe)
+#define TB_SAP_KEY_DEAD         TB_U(0xffffffff)
 /* Flags of a sorted box (box_max.w bits). */
 #define TB_SAP_BOX_DYNAMIC      TB_U(1)  /* the body is dynamic */
 #define TB_SAP_BOX_OUT          TB_U(2)  /* dead or large: not swept, never a candidate */
@@ -224,8 +225,9 @@ TB_STRUCT(tb_gpu_sap_partial) {
 };
 
 TB_STRUCT(tb_gpu_sap_header) {
-    TB_UVEC4 state;           /* x sweep axis (0, 1, 2), y large bodies (the compaction's
-                                 count), z w unused */
+    TB_UVEC4 state;           /* x sweep axis (0, 1, 2); y sorted position of the first
+                                 large body (= bodies swept), z of the first dead slot (the
+                                 large bodies are those between); w unused */
 };
 
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed

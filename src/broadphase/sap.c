@@ -5,9 +5,10 @@
  * sort and every dynamic body tests their list.
  *
  * Passes: sap_stats (per body) and sap_axis (one workgroup) choose the axis; sap_keys
- * writes the sort entries; the radix sort orders them (32 key bits); the compaction lists
- * the large bodies; sap_gather copies the boxes into sorted order; sap_sweep counts and then
- * writes the pairs around the shared scan and capacity check. */
+ * writes the sort entries; the radix sort orders them (32 key bits), large bodies and dead
+ * slots last; sap_gather copies the boxes into sorted order and finds where the large ones
+ * are; sap_sweep counts and then writes the pairs around the shared scan and capacity
+ * check. */
 #include "broadphase/broadphase.h"
 
 #include <stdlib.h>
@@ -19,7 +20,7 @@
                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
 
 /* One buffer per TB_SAP_* address, in that order. */
-enum { SAP_BUFFERS = TB_SAP_HEADER + 1 };
+enum { SAP_BUFFERS = TB_SAP_ADDRESSES };
 
 typedef struct sap_state {
     VkPipeline stats, axis, keys, gather, sweep;
@@ -105,7 +106,6 @@ static tb_result sap_record(tb_world* w, tb_pass_list* list)
     tb_sim* sim = &w->sim;
     tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
-    tb_gpu_ptr large_count = buffer_ptr(s, TB_SAP_HEADER, offsetof(tb_gpu_sap_header, state) + 4);
     tb_gpu_ptr none = { 0 };
     tb_gpu_broadphase_push count = push_of(s, TB_BROADPHASE_COUNT);
     tb_gpu_broadphase_push write = push_of(s, TB_BROADPHASE_WRITE);
@@ -115,9 +115,6 @@ static tb_result sap_record(tb_world* w, tb_pass_list* list)
     if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = tb_prims_sort(&w->prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
                               buffer_ptr(s, TB_SAP_ORDER, 0), slots, cap, 32, scratch);
-    if (!r) r = tb_prims_compact(&w->prims, list, buffer_ptr(s, TB_SAP_LARGE_FLAGS, 0),
-                                 buffer_ptr(s, TB_SAP_LARGE_LIST, 0), slots, cap, large_count,
-                                 scratch);
     if (!r) r = tb_broadphase_add(w, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
     tb_pass count_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &count);
     tb_pass write_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &write);
