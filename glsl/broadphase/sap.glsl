@@ -15,11 +15,14 @@
 #include "pairs.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer SapUints { uint v[]; };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapVec4s { vec4 v[]; };
+// Sorted boxes are kept as uints: xyz a corner's float bits, w integer (slot or flags),
+// which as float bits would be denormals that a flushing move could zero.
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapBoxes { uvec4 v[]; };
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapPartials {
     tb_gpu_sap_partial v[];
 };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer SapHeader {
+// Align 4: kernels write its members one by one.
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer SapHeader {
     tb_gpu_sap_header h;
 };
 
@@ -31,7 +34,7 @@ uvec2 sap_address(uint index)
 }
 
 SapUints sap_uints(uint index) { return SapUints(sap_address(index)); }
-SapVec4s sap_vec4s(uint index) { return SapVec4s(sap_address(index)); }
+SapBoxes sap_boxes(uint index) { return SapBoxes(sap_address(index)); }
 SapHeader sap_header() { return SapHeader(sap_address(TB_SAP_HEADER)); }
 
 // A static body much larger than every dynamic one (see TB_SAP_LARGE_FACTOR).
@@ -56,12 +59,19 @@ uint sap_ordered_bits(float f)
     return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
 }
 
-// The same test as aabbs_touch (pairs.glsl), on boxes in registers: the sweep's stopping
-// rule uses its very expression on the axis, so the two never disagree by a rounding.
-bool sap_boxes_touch(vec3 min_a, vec3 max_a, vec3 min_b, vec3 max_b)
+// The corner of a sorted box.
+vec3 sap_corner(uvec4 box)
+{
+    return uintBitsToFloat(box.xyz);
+}
+
+// The same test as aabbs_touch (pairs.glsl), on sorted boxes: the sweep's stopping rule
+// uses its very expression on the axis, so the two never disagree by a rounding.
+bool sap_boxes_touch(uvec4 min_a, uvec4 max_a, uvec4 min_b, uvec4 max_b)
 {
     float m = params.contact.x;
-    return !any(greaterThan(min_a - m, max_b)) && !any(greaterThan(min_b - m, max_a));
+    return !any(greaterThan(sap_corner(min_a) - m, sap_corner(max_b))) &&
+           !any(greaterThan(sap_corner(min_b) - m, sap_corner(max_a)));
 }
 
 #endif

@@ -39,5 +39,5 @@ void main()
     if (m2.z > m2[axis]) axis = 2u;
     // The ends of the large bodies' run in the sorted order, until sap_gather finds them
     // (when there are none, or no dead slots, nothing is past the last entry).
-    sap_header().h.state.xyz = uvec3(axis, params.counts.x, params.counts.x);
+    sap_header().h.state = uvec4(axis, params.counts.x, params.counts.x, 0u);
 }

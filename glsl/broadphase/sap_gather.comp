@@ -1,7 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The boxes in sorted order, so the sweeps read neighbours from neighbouring addresses:
-// min with the body's slot in w, max with its TB_SAP_BOX_* flags in w. The first large
+// min with the body's slot in w, max with its TB_SAP_BOX_* flags in w (as uints), their axes turned
+// so that the sweep axis comes first (x): the sweep then needs no axis index, and the
+// overlap test, the same on every axis, gives the same answers. The first large
 // body and the first dead slot in the order (the sort put them last) say where the swept
 // boxes and the large ones end.
 #include "world.glsl"
@@ -11,6 +13,12 @@
 uint class_of(uint key)
 {
     return key == TB_SAP_KEY_DEAD ? 2u : key == TB_SAP_KEY_LARGE ? 1u : 0u;
+}
+
+// The axes of v, the sweep axis first (cyclic, so the test is the same).
+vec3 sweep_axis_first(vec3 v, uint axis)
+{
+    return axis == 0u ? v : axis == 1u ? v.yzx : v.zxy;
 }
 
 void main()
@@ -25,6 +33,9 @@ void main()
     uint i = sap_uints(TB_SAP_ORDER).v[s];
     uint flags = (body_is(i, TB_BODY_FLAG_DYNAMIC) ? TB_SAP_BOX_DYNAMIC : 0u) |
                  (here != 0u ? TB_SAP_BOX_OUT : 0u);
-    sap_vec4s(TB_SAP_BOX_MIN).v[s] = vec4(body_aabb_min[i].xyz, uintBitsToFloat(i));
-    sap_vec4s(TB_SAP_BOX_MAX).v[s] = vec4(body_aabb_max[i].xyz, uintBitsToFloat(flags));
+    uint axis = sap_header().h.state.x;
+    vec3 lo = sweep_axis_first(body_aabb_min[i].xyz, axis);
+    vec3 hi = sweep_axis_first(body_aabb_max[i].xyz, axis);
+    sap_boxes(TB_SAP_BOX_MIN).v[s] = uvec4(floatBitsToUint(lo), i);
+    sap_boxes(TB_SAP_BOX_MAX).v[s] = uvec4(floatBitsToUint(hi), flags);
 }

@@ -9,7 +9,8 @@
 // then write them. The invocation of sorted position s is the finder of body i = the
 // slot there: it walks t = s + 1, s + 2, ... while the box at t can still reach i's box
 // on the axis (minima only grow along the order), and reports the pairs whose boxes
-// touch as (lower slot, higher slot). A dynamic body then tests the large static bodies.
+// touch as (lower slot, higher slot). A dynamic body first tests the large static bodies.
+// Writing, a finder knows how many pairs the count found, and stops at the last one.
 //
 // Three gears, each taking the candidates in order from where the last one stopped, so the
 // pairs of a finder come in candidate order whichever gear found them:
@@ -26,52 +27,55 @@
 
 const uint TILE = gl_WorkGroupSize.x;
 
-shared vec4 s_min[TILE];
-shared vec4 s_max[TILE];
+shared uvec4 s_min[TILE];
+shared uvec4 s_max[TILE];
 shared uint s_sweeping[TILE];   // per subgroup (there are at most TILE of them)
 
-uint axis;
-uint n;           // sorted entries that are swept (the large and dead ones follow)
-SapVec4s box_min;
-SapVec4s box_max;
+uint n;           // sorted entries that are swept
+uint large_end;   // the large bodies follow, up to here (then the dead slots)
+SapBoxes box_min;
+SapBoxes box_max;
 
 // This invocation's finder: sorted position s, body i, box, flags; `open` while its
-// sweep goes on, `next` its next candidate.
+// sweep goes on, `next` its next candidate, `expected` its pairs (when writing).
 uint s;
 uint i;
-vec4 fmin;
-vec4 fmax;
+uvec4 fmin;
+uvec4 fmax;
 uint fflags;
 bool open;
 uint next;
+uint expected;
 
 // Whether the box (tmin, tmax) at a candidate pairs with the finder (fmin, fmax, fflags):
 // swept, not both static, touching.
-bool pairs_with(vec4 amin, vec4 amax, uint aflags, vec4 tmin, vec4 tmax)
+bool pairs_with(uvec4 amin, uvec4 amax, uint aflags, uvec4 tmin, uvec4 tmax)
 {
-    uint tflags = floatBitsToUint(tmax.w);
+    uint tflags = tmax.w;
     if ((tflags & TB_SAP_BOX_OUT) != 0u) return false;
     if (((aflags | tflags) & TB_SAP_BOX_DYNAMIC) == 0u) return false;
-    return sap_boxes_touch(amin.xyz, amax.xyz, tmin.xyz, tmax.xyz);
+    return sap_boxes_touch(amin, amax, tmin, tmax);
 }
 
 // Whether a box of minimum `tmin` (or any later one) is beyond the reach of a finder with
-// maximum `amax`. The expression is aabbs_touch's, so no touching box is left out.
-bool beyond(vec4 tmin, vec4 amax)
+// maximum `amax` on the sweep axis (x of the sorted boxes). The expression is
+// aabbs_touch's, so no touching box is left out.
+bool beyond(uvec4 tmin, uvec4 amax)
 {
-    return tmin[axis] - params.contact.x > amax[axis];
+    return uintBitsToFloat(tmin.x) - params.contact.x > uintBitsToFloat(amax.x);
 }
 
 // One candidate of this invocation's own sweep: closes the sweep past its reach.
-void take(uint t, vec4 tmin, vec4 tmax)
+void take(uint t, uvec4 tmin, uvec4 tmax)
 {
     if (t >= n || beyond(tmin, fmax)) {
         open = false;
         return;
     }
     if (pairs_with(fmin, fmax, fflags, tmin, tmax)) {
-        uint j = floatBitsToUint(tmin.w);
+        uint j = tmin.w;
         bp_report(min(i, j), max(i, j));
+        open = bp_found < expected;
     }
     next = t + 1u;
 }
@@ -113,7 +117,7 @@ void sweep_side_by_side()
 {
     while (subgroupBallotBitCount(subgroupBallot(open)) * 4u > gl_SubgroupSize) {
         if (open) {
-            vec4 tmin = vec4(0.0), tmax = vec4(0.0);
+            uvec4 tmin = uvec4(0u), tmax = uvec4(0u);
             if (next < n) {   // never a load past n, even a speculated one
                 tmin = box_min.v[next];
                 tmax = box_max.v[next];
@@ -131,26 +135,25 @@ void sweep_together()
         uint lane = subgroupBallotFindLSB(left);
         left[lane / 32u] &= ~(1u << (lane % 32u));
         uint start = subgroupShuffle(next, lane);
-        vec4 lmin = subgroupShuffle(fmin, lane);
-        vec4 lmax = subgroupShuffle(fmax, lane);
+        uvec4 lmin = subgroupShuffle(fmin, lane);
+        uvec4 lmax = subgroupShuffle(fmax, lane);
         uint lflags = subgroupShuffle(fflags, lane);
         uint base = subgroupShuffle(bp_base, lane);
         uint found = subgroupShuffle(bp_found, lane);
+        uint wanted = subgroupShuffle(expected, lane);
         for (uint c = start;; c += gl_SubgroupSize) {
             uint t = c + gl_SubgroupInvocationID;
             bool inside = t < n;
-            vec4 tmin = vec4(0.0);
+            uvec4 tmin = uvec4(0u);
             if (inside) tmin = box_min.v[t];
             inside = inside && !beyond(tmin, lmax);
             bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, box_max.v[t]);
             uvec4 hits = subgroupBallot(hit);
             if (hit && bp_writing())
                 pairs[pair_half_base() + base + found + subgroupBallotExclusiveBitCount(hits)] =
-                    uvec4(min(floatBitsToUint(lmin.w), floatBitsToUint(tmin.w)),
-                          max(floatBitsToUint(lmin.w), floatBitsToUint(tmin.w)),
-                          TB_NO_COLOUR, 0u);
+                    uvec4(min(lmin.w, tmin.w), max(lmin.w, tmin.w), TB_NO_COLOUR, 0u);
             found += subgroupBallotBitCount(hits);
-            if (!subgroupAll(inside)) break;
+            if (!subgroupAll(inside) || found == wanted) break;
         }
         if (gl_SubgroupInvocationID == lane) {
             bp_found = found;
@@ -162,44 +165,55 @@ void sweep_together()
 // The large static bodies, in the sorted order after the swept ones.
 void search_large()
 {
-    uint end = sap_header().h.state.z;
-    for (uint t = n; t < end; t++) {   // the same t in every lane: one read for them all
-        vec4 tmin = box_min.v[t];
-        if (sap_boxes_touch(fmin.xyz, fmax.xyz, tmin.xyz, box_max.v[t].xyz)) {
-            uint j = floatBitsToUint(tmin.w);
+    for (uint t = n; t < large_end; t++) {   // the same t in every lane: one read for them all
+        uvec4 tmin = box_min.v[t];
+        if (sap_boxes_touch(fmin, fmax, tmin, box_max.v[t])) {
+            uint j = tmin.w;
             bp_report(min(i, j), max(i, j));
         }
     }
+}
+
+// Writing: the pairs the count found for this finder, from the scanned counts (the
+// offsets of slot i and of the next slot, or the total after the last).
+uint finder_pairs()
+{
+    uint end = i + 1u < counters.grid.z ? body_pair_count[i + 1u] : counters.state.z;
+    return end - bp_base;
 }
 
 void main()
 {
     if (step_aborted()) return;   // the whole workgroup returns together
     uvec4 header = sap_header().h.state;
-    axis = header.x;
     n = header.y;
-    box_min = sap_vec4s(TB_SAP_BOX_MIN);
-    box_max = sap_vec4s(TB_SAP_BOX_MAX);
+    large_end = header.z;
+    box_min = sap_boxes(TB_SAP_BOX_MIN);
+    box_max = sap_boxes(TB_SAP_BOX_MAX);
     uint first = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * TILE;
     s = first + gl_LocalInvocationIndex;
     bool valid = s < counters.grid.z;   // others still take part in the shared work
-    fmin = vec4(0.0);
-    fmax = vec4(0.0);
+    fmin = uvec4(0u);
+    fmax = uvec4(0u);
     fflags = TB_SAP_BOX_OUT;
     if (valid) {
         fmin = box_min.v[s];
         fmax = box_max.v[s];
-        fflags = floatBitsToUint(fmax.w);
+        fflags = fmax.w;
     }
-    i = floatBitsToUint(fmin.w);
+    i = fmin.w;
     bp_found = 0u;
     bp_base = 0u;
-    if (valid) bp_begin(i);
-    open = (fflags & TB_SAP_BOX_OUT) == 0u;
+    expected = 0xffffffffu;
+    if (valid) {
+        bp_begin(i);
+        if (bp_writing()) expected = finder_pairs();
+    }
+    if ((fflags & (TB_SAP_BOX_OUT | TB_SAP_BOX_DYNAMIC)) == TB_SAP_BOX_DYNAMIC) search_large();
+    open = (fflags & TB_SAP_BOX_OUT) == 0u && bp_found < expected;
     next = s + 1u;
     sweep_tiles(first);
     sweep_side_by_side();
     sweep_together();
-    if ((fflags & (TB_SAP_BOX_OUT | TB_SAP_BOX_DYNAMIC)) == TB_SAP_BOX_DYNAMIC) search_large();
     if (valid) bp_end(i);
 }

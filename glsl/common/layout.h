@@ -198,8 +198,9 @@ TB_STRUCT(tb_gpu_broadphase_push) {
  * even i, zw for odd): */
 #define TB_SAP_KEYS             0 /* uint[cap]: sort key (TB_SAP_KEY_* or the ordered minimum) */
 #define TB_SAP_ORDER            1 /* uint[cap]: body slot, sorted with the keys */
-#define TB_SAP_BOX_MIN          2 /* vec4[cap]: minimum corner in sorted order, w slot bits */
-#define TB_SAP_BOX_MAX          3 /* vec4[cap]: maximum corner in sorted order, w TB_SAP_BOX_* */
+#define TB_SAP_BOX_MIN          2 /* uvec4[cap]: minimum corner (float bits) in sorted order, the
+                                     sweep axis in x (axes turned cyclically), w the slot */
+#define TB_SAP_BOX_MAX          3 /* uvec4[cap]: maximum corner, the same way, w TB_SAP_BOX_* */
 #define TB_SAP_PARTIALS         4 /* tb_gpu_sap_partial[workgroups of sap_stats] */
 #define TB_SAP_HEADER           5 /* tb_gpu_sap_header */
 #define TB_SAP_ADDRESSES        6
