@@ -37,6 +37,12 @@ SapUints sap_uints(uint index) { return SapUints(sap_address(index)); }
 SapBoxes sap_boxes(uint index) { return SapBoxes(sap_address(index)); }
 SapHeader sap_header() { return SapHeader(sap_address(TB_SAP_HEADER)); }
 
+// The sweep axis of this step (0, 1, 2).
+uint sap_axis()
+{
+    return min(sap_header().h.state.x, 2u);
+}
+
 // A static body much larger than every dynamic one (see TB_SAP_LARGE_FACTOR).
 bool sap_is_large(uint body)
 {
@@ -44,12 +50,6 @@ bool sap_is_large(uint body)
     vec3 side = body_aabb_max[body].xyz - body_aabb_min[body].xyz;
     float largest_dynamic = max(uintBitsToFloat(counters.grid.x), params.contact.x);
     return max(side.x, max(side.y, side.z)) > float(TB_SAP_LARGE_FACTOR) * largest_dynamic;
-}
-
-// Bodies that take part in the sort and sweep: alive and not large.
-bool sap_is_swept(uint body)
-{
-    return body_is(body, TB_BODY_FLAG_ALIVE) && !sap_is_large(body);
 }
 
 // Floats to uints of the same order (negative ones reversed below the positive ones).

@@ -11,6 +11,7 @@
 // on the axis (minima only grow along the order), and reports the pairs whose boxes
 // touch as (lower slot, higher slot). A dynamic body first tests the large static bodies.
 // Writing, a finder knows how many pairs the count found, and stops at the last one.
+// Counting, workgroup 0 then chooses the next step's axis.
 //
 // Three gears, each taking the candidates in order from where the last one stopped, so the
 // pairs of a finder come in candidate order whichever gear found them:
@@ -24,6 +25,7 @@
 //    among small ones) does not hold its subgroup for its whole span.
 #include "world.glsl"
 #include "sap.glsl"
+#include "sap_axis.glsl"
 
 const uint TILE = gl_WorkGroupSize.x;
 
@@ -185,9 +187,9 @@ uint finder_pairs()
 void main()
 {
     if (step_aborted()) return;   // the whole workgroup returns together
-    uvec4 header = sap_header().h.state;
-    n = header.y;
-    large_end = header.z;
+    uvec2 ends = sap_header().h.state.yz;   // x, the axis, is being chosen (sap_axis.glsl)
+    n = ends.x;
+    large_end = ends.y;
     box_min = sap_boxes(TB_SAP_BOX_MIN);
     box_max = sap_boxes(TB_SAP_BOX_MAX);
     uint first = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * TILE;
@@ -216,4 +218,6 @@ void main()
     sweep_side_by_side();
     sweep_together();
     if (valid) bp_end(i);
+    uint slots = counters.grid.z;
+    if (!bp_writing() && first == 0u) sap_axis_choose((slots + TILE - 1u) / TILE);
 }

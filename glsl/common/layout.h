@@ -201,7 +201,7 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 #define TB_SAP_BOX_MIN          2 /* uvec4[cap]: minimum corner (float bits) in sorted order, the
                                      sweep axis in x (axes turned cyclically), w the slot */
 #define TB_SAP_BOX_MAX          3 /* uvec4[cap]: maximum corner, the same way, w TB_SAP_BOX_* */
-#define TB_SAP_PARTIALS         4 /* tb_gpu_sap_partial[workgroups of sap_stats] */
+#define TB_SAP_PARTIALS         4 /* tb_gpu_sap_partial[workgroups of sap_gather] */
 #define TB_SAP_HEADER           5 /* tb_gpu_sap_header */
 #define TB_SAP_ADDRESSES        6
 /* Sort keys of the slots that stay out of the sweep, after every real key (the ordered
@@ -214,21 +214,19 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 /* A static body whose largest side exceeds this many times the largest dynamic side (and
  * the contact margin) is large: every dynamic body tests it instead of the sweep. */
 #define TB_SAP_LARGE_FACTOR     4.0
-/* Threads per workgroup of sap_axis (one workgroup folds every sap_stats partial). */
-#define TB_SAP_AXIS_GROUP_SIZE  256
 
-/* The spread of the AABB centres of one workgroup of sap_stats: count, mean and sum of
- * squared deviations per axis (Chan et al.'s pairwise update folds them without the
- * cancellation of sum(c^2) - sum(c)^2 / n far from the origin). */
+/* The spread of the swept boxes' centres in one workgroup of sap_gather: count, mean and
+ * sum of squared deviations per axis (glsl/broadphase/sap_axis.glsl folds them). */
 TB_STRUCT(tb_gpu_sap_partial) {
     TB_VEC4 mean;             /* xyz mean centre, w bodies counted */
     TB_VEC4 m2;               /* xyz sum of squared deviations from the mean, w unused */
 };
 
 TB_STRUCT(tb_gpu_sap_header) {
-    TB_UVEC4 state;           /* x sweep axis (0, 1, 2); y sorted position of the first
-                                 large body (= bodies swept), z of the first dead slot (the
-                                 large bodies are those between); w unused */
+    TB_UVEC4 state;           /* x sweep axis (0, 1, 2), chosen by the step before (0 at
+                                 first); y sorted position of the first large body
+                                 (= bodies swept), z of the first dead slot (the large
+                                 bodies are those between); w unused */
 };
 
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed

@@ -4,11 +4,11 @@
  * boxes that can still reach it. Large static bodies (planes, ground boxes) stay out of the
  * sort and every dynamic body tests their list.
  *
- * Passes: sap_stats (per body) and sap_axis (one workgroup) choose the axis; sap_keys
- * writes the sort entries; the radix sort orders them (32 key bits), large bodies and dead
- * slots last; sap_gather copies the boxes into sorted order and finds where the large ones
- * are; sap_sweep counts and then writes the pairs around the shared scan and capacity
- * check. */
+ * Passes: sap_keys writes the sort entries along the axis the previous step chose; the
+ * radix sort orders them (32 key bits), large bodies and dead slots last; sap_gather copies
+ * the boxes into sorted order, finds where the large ones are and measures the spread of
+ * the centres; sap_sweep counts and then writes the pairs around the shared scan and
+ * capacity check, and its counting run chooses the next step's axis. */
 #include "broadphase/broadphase.h"
 
 #include <stdlib.h>
@@ -23,7 +23,7 @@
 enum { SAP_BUFFERS = TB_SAP_ADDRESSES };
 
 typedef struct sap_state {
-    VkPipeline stats, axis, keys, gather, sweep;
+    VkPipeline keys, gather, sweep;
     tb_buffer buffers[SAP_BUFFERS];
 } sap_state;
 
@@ -36,7 +36,7 @@ static void sap_destroy(tb_world* w)
 {
     sap_state* s = w->broadphase_state;
     if (!s) return;
-    VkPipeline all[] = { s->stats, s->axis, s->keys, s->gather, s->sweep };
+    VkPipeline all[] = { s->keys, s->gather, s->sweep };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
     release_buffers(w, s);
@@ -50,9 +50,7 @@ static tb_result sap_create(tb_world* w)
     if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     w->broadphase_state = s;
     tb_pipelines* p = &w->pipelines;
-    tb_result r = tb_pipeline_create(p, "broadphase/sap_stats", TB_WORKGROUP_SIZE, &s->stats);
-    if (!r) r = tb_pipeline_create(p, "broadphase/sap_axis", TB_SAP_AXIS_GROUP_SIZE, &s->axis);
-    if (!r) r = tb_pipeline_create(p, "broadphase/sap_keys", TB_WORKGROUP_SIZE, &s->keys);
+    tb_result r = tb_pipeline_create(p, "broadphase/sap_keys", TB_WORKGROUP_SIZE, &s->keys);
     if (!r) r = tb_pipeline_create(p, "broadphase/sap_gather", TB_WORKGROUP_SIZE, &s->gather);
     if (!r) r = tb_pipeline_create(p, "broadphase/sap_sweep", TB_WORKGROUP_SIZE, &s->sweep);
     return r;
@@ -72,8 +70,21 @@ static VkDeviceSize buffer_bytes(int index, uint32_t capacity)
     }
 }
 
-/* Nothing in the buffers outlives a step, so growing them is replacing them. The world
- * grows the sim's buffers first, which waits for the device, so no step still uses ours. */
+/* A zero header: the first step sweeps along x (then each step chooses the next's axis). */
+static tb_result clear_header(tb_world* w, const tb_buffer* header)
+{
+    tb_transfer* t = &w->transfer;
+    tb_result r = tb_transfer_begin(t, sizeof(tb_gpu_sap_header));
+    if (r) return r;
+    memset(tb_transfer_upload(t, header->buffer, 0, sizeof(tb_gpu_sap_header)), 0,
+           sizeof(tb_gpu_sap_header));
+    r = tb_transfer_end(t);
+    return r ? r : tb_gpu_submit_wait(&w->gpu, &t->cb, 1);
+}
+
+/* Only the header's axis outlives a step, so growing the buffers is replacing them. The
+ * world grows the sim's buffers first, which waits for the device, so no step still uses
+ * ours. */
 static tb_result sap_reserve(tb_world* w, uint32_t capacity)
 {
     sap_state* s = w->broadphase_state;
@@ -81,7 +92,7 @@ static tb_result sap_reserve(tb_world* w, uint32_t capacity)
     tb_result r = TB_OK;
     for (int b = 0; b < SAP_BUFFERS && !r; b++)
         r = tb_buffer_create(&w->memory, buffer_bytes(b, capacity), USAGE, 0, &s->buffers[b]);
-    return r;
+    return r ? r : clear_header(w, &s->buffers[TB_SAP_HEADER]);
 }
 
 static tb_gpu_ptr buffer_ptr(const sap_state* s, int index, VkDeviceSize offset)
@@ -110,9 +121,7 @@ static tb_result sap_record(tb_world* w, tb_pass_list* list)
     tb_gpu_broadphase_push count = push_of(s, TB_BROADPHASE_COUNT);
     tb_gpu_broadphase_push write = push_of(s, TB_BROADPHASE_WRITE);
     uint32_t cap = sim->body_capacity;
-    tb_result r = tb_broadphase_add(w, list, s->stats, TB_DISPATCH_PER_BODY, 0, none, &count);
-    if (!r) r = tb_broadphase_add(w, list, s->axis, TB_DISPATCH_FIXED, 1, none, &count);
-    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
+    tb_result r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = tb_prims_sort(&w->prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
                               buffer_ptr(s, TB_SAP_ORDER, 0), slots, cap, 32, scratch);
     if (!r) r = tb_broadphase_add(w, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
