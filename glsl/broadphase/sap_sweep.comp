@@ -49,8 +49,8 @@ bool open;
 uint next;
 uint expected;
 
-// Whether the box (tmin, tmax) at a candidate pairs with the finder (fmin, fmax, fflags):
-// swept, not both static, touching.
+// Whether the box (tmin, tmax) at a candidate pairs with the finder's (amin, amax, with
+// flags aflags): swept, not both static, touching.
 bool pairs_with(uvec4 amin, uvec4 amax, uint aflags, uvec4 tmin, uvec4 tmax)
 {
     uint tflags = tmax.w;

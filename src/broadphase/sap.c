@@ -2,7 +2,7 @@
  * GDC 2013 Bullet 3 talk: choose the axis along which the AABB centres spread most, sort
  * the boxes by their minimum on it, and let each body sweep forward through the sorted
  * boxes that can still reach it. Large static bodies (planes, ground boxes) stay out of the
- * sort and every dynamic body tests their list.
+ * sweep (sorted after it) and every dynamic body tests them.
  *
  * Passes: sap_keys writes the sort entries along the axis the previous step chose; the
  * radix sort orders them (32 key bits), large bodies and dead slots last; sap_gather copies
