@@ -2,8 +2,9 @@
 // most (fewest boxes share a slab of it, so the sweeps are shortest). Any axis gives the
 // same pairs; this one is quickest. A step sweeps along the axis its predecessor chose:
 // sap_gather, which has every swept box in hand, leaves each workgroup's count, mean
-// centre and sum of squared deviations, and workgroup 0 of the counting sweep (after
-// sap_gather, so every partial is there) folds them into the next step's axis.
+// centre and sum of squared deviations, and workgroup 0 of the writing sweep (after
+// sap_gather, so every partial is there; and only in a step that is kept) folds them into
+// the next step's axis.
 //
 // Chan, Golub and LeVeque's pairwise update folds the partials without the cancellation
 // of sum(c^2) - sum(c)^2 / n far from the origin.

@@ -11,7 +11,8 @@
 // on the axis (minima only grow along the order), and reports the pairs whose boxes
 // touch as (lower slot, higher slot). A dynamic body first tests the large static bodies.
 // Writing, a finder knows how many pairs the count found, and stops at the last one.
-// Counting, workgroup 0 then chooses the next step's axis.
+// Writing, workgroup 0 then chooses the next step's axis: the write runs only in a step
+// that is kept, so a step redone after an overflow sweeps along the same axis as before.
 //
 // Three gears, each taking the candidates in order from where the last one stopped, so the
 // pairs of a finder come in candidate order whichever gear found them:
@@ -219,5 +220,5 @@ void main()
     sweep_together();
     if (valid) bp_end(i);
     uint slots = counters.grid.z;
-    if (!bp_writing() && first == 0u) sap_axis_choose((slots + TILE - 1u) / TILE);
+    if (bp_writing() && first == 0u) sap_axis_choose((slots + TILE - 1u) / TILE);
 }

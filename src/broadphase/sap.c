@@ -8,7 +8,7 @@
  * radix sort orders them (32 key bits), large bodies and dead slots last; sap_gather copies
  * the boxes into sorted order, finds where the large ones are and measures the spread of
  * the centres; sap_sweep counts and then writes the pairs around the shared scan and
- * capacity check, and its counting run chooses the next step's axis. */
+ * capacity check, and its writing run chooses the next step's axis. */
 #include "broadphase/broadphase.h"
 
 #include <stdlib.h>
