@@ -51,25 +51,29 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_GRID_TABLE      17 /* uvec2[]: per hash bucket, [start, end) into the sorted entries */
 #define TB_BIND_LARGE_FLAGS     18 /* uint[]: 1 for a static body too large for the grid */
 #define TB_BIND_LARGE_LIST      19 /* uint[]: bodies flagged large, in slot order */
-/* Pairs and contacts (sized by the pair capacity; the two halves alternate by step parity): */
+/* Pairs (sized by the pair capacity; the two halves alternate by step parity): */
 #define TB_BIND_PAIRS           20 /* uvec4[2 * pair cap]: x body a (owner), y body b, z colour, w unused */
-#define TB_BIND_MANIFOLDS       21 /* tb_gpu_manifold[pair cap]: this step's, indexed like its pairs */
-#define TB_BIND_CONSTRAINTS     22 /* tb_gpu_constraint[pair cap]: solver data of this step */
-#define TB_BIND_COLOUR_LIST     23 /* uint[pair cap]: pair indices (within the half) grouped by colour */
-#define TB_BIND_PREV_MANIFOLDS  24 /* tb_gpu_manifold[pair cap]: last step's, indexed like its pairs
-                                      (the other half); the warm start reads them */
+#define TB_BIND_COLOUR_LIST     21 /* uint[pair cap]: pair indices (within the half) grouped by colour */
 /* Convex hulls (sized by the hull data of the live shapes; tb_gpu_shape.hull locates a hull): */
-#define TB_BIND_HULL_VECTORS    25 /* vec4[]: each hull's vertices (xyz, w 0), then its face planes
+#define TB_BIND_HULL_VECTORS    22 /* vec4[]: each hull's vertices (xyz, w 0), then its face planes
                                       (xyz outward unit normal, w offset: dot(n, x) = w on the face) */
-#define TB_BIND_HULL_TOPOLOGY   26 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
+#define TB_BIND_HULL_TOPOLOGY   23 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
                                       f0 | f1 << 16: the faces left and right of v0 -> v1 seen from
                                       outside), then its faces (first | count << 16: the face's
                                       vertex indices at topology[face base + first ...], counter-
                                       clockwise seen from outside), then those indices */
-#define TB_BIND_COLOUR_WORK     27 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
+#define TB_BIND_COLOUR_WORK     24 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
                                       (each pair cap long) the colouring passes read and
                                       write in turn (tb_gpu_counters.colouring counts them) */
-#define TB_BIND_COUNT           28
+/* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
+ * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
+ * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
+ * many pairs a step can hold; memory does (world.glsl names them like arrays):
+ *   manifolds       tb_gpu_manifold[pair cap]: this step's, indexed like its pairs
+ *   prev_manifolds  tb_gpu_manifold[pair cap]: last step's, indexed like its pairs (the
+ *                   other half); the warm start reads them
+ *   constraints     tb_gpu_constraint[pair cap]: solver data of this step */
+#define TB_BIND_COUNT           25
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -134,6 +138,8 @@ TB_STRUCT(tb_gpu_params) {
     TB_VEC4 soft;           /* soft contact of one substep: x bias rate (1/s), y mass scale,
                                z impulse scale, w substep h (s) */
     TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
+    TB_UVEC4 contact_arrays[2]; /* device addresses as (low, high) pairs: [0].xy manifolds,
+                                   [0].zw prev_manifolds, [1].xy constraints, [1].zw unused */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
