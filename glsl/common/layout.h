@@ -199,6 +199,57 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 #define TB_BROADPHASE_COUNT     TB_U(0)
 #define TB_BROADPHASE_WRITE     TB_U(1)
 
+/* ---- Linear BVH (src/gpu/lbvh.c, glsl/common/lbvh.glsl; the lbvh broadphase) ----------
+ * Karras 2012 over items sorted by key: leaf k is the k-th sorted item, internal node i
+ * (0 is the root) splits at the highest bit where its range's keys differ (equal keys by
+ * index). Nodes live in one array of 2 * capacity: internal nodes from 0, leaves from
+ * capacity. A node reference is an internal node's index, TB_LBVH_LEAF | k for leaf k, or
+ * TB_LBVH_END. Each node keeps its escape: the node that follows its subtree in depth-first
+ * order, so a query walks the tree without a stack (hit: go to the left child, miss or
+ * leaf: take the escape); started at a leaf's escape, it visits only the leaves after it. */
+#define TB_LBVH_LEAF            TB_U(0x80000000)
+#define TB_LBVH_END             TB_U(0xffffffff)
+#define TB_LBVH_KEY_BITS        30   /* Morton codes: 10 bits per axis */
+#define TB_LBVH_KEY_END         (TB_U(1) << TB_LBVH_KEY_BITS) /* keys from here on are no
+                                        leaves; they sort after every leaf */
+TB_STRUCT(tb_gpu_lbvh_node) {
+    TB_UVEC4 lo;              /* xyz box minimum (float bits); w internal: its left child (the
+                                 right one is links' start of left + 1), leaf: its item */
+    TB_UVEC4 hi;              /* xyz box maximum (float bits); w its escape (while building an
+                                 internal node: the last leaf of its range) */
+};
+/* The links array: sections of `capacity` uints, then the leaf count (one uint). */
+#define TB_LBVH_LINK_PARENT     0    /* parent of internal node i (the root's: TB_LBVH_END) */
+#define TB_LBVH_LINK_LEAF_PARENT 1   /* parent of leaf k */
+#define TB_LBVH_LINK_ARRIVALS   2    /* children of internal node i the refit has finished */
+#define TB_LBVH_LINK_START      3    /* the node whose range starts at leaf k > 0 (a right child) */
+#define TB_LBVH_LINK_SECTIONS   4
+/* Push constants of the build kernels (broadphase/lbvh_build_*). */
+TB_STRUCT(tb_gpu_lbvh_push) {
+    TB_UVEC4 args;            /* x capacity (items the arrays hold), y z w unused */
+    TB_UVEC4 keys;            /* xy sorted keys (uint), zw their items (uint) */
+    TB_UVEC4 counts;          /* xy address of the count of sorted keys, zw address of a uint
+                                 that, when nonzero, says do nothing (0: none) */
+    TB_UVEC4 tree;            /* xy nodes, zw links */
+    TB_UVEC4 boxes;           /* per item, xy minimum and zw maximum corners (vec4, xyz used) */
+};
+/* The lbvh broadphase's keys beyond the tree: large static bodies (tested by every dynamic
+ * body from the run of these keys), then dead slots. Sorted with 31 key bits. */
+#define TB_LBVH_KEY_LARGE       TB_LBVH_KEY_END
+#define TB_LBVH_KEY_DEAD        (TB_LBVH_KEY_END + TB_U(1))
+#define TB_LBVH_SORT_BITS       31
+/* Static bodies whose side is at least this are unbounded (planes): out of the scene bounds. */
+#define TB_LBVH_UNBOUNDED_SIDE  1.0e15
+/* Centre bounds of the lbvh broadphase's tree bodies: xyz of `hi` the largest centre
+ * coordinates, of `lo` the smallest, as order-preserving uints (lo inverted) so both grow
+ * by atomicMax from 0, which means none. */
+TB_STRUCT(tb_gpu_lbvh_bounds) {
+    TB_UVEC4 hi;              /* xyz ordered bits of the largest centre, w unused */
+    TB_UVEC4 lo;              /* xyz inverted ordered bits of the smallest centre, w unused */
+};
+/* Most workgroups of broadphase/lbvh_bounds (a grid-stride loop covers the rest). */
+#define TB_LBVH_BOUNDS_GROUPS   1024
+
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed
  * as push constants, each as a (low, high) uint pair so no shader needs int64; element
  * counts are read on the GPU from the uint at a `count` address and clamped to the largest
