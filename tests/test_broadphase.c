@@ -289,6 +289,7 @@ static void test_moving_over_many_steps(void** state)
 
 static const tb_broadphase kinds[] = {
     TB_BROADPHASE_GRID,
+    TB_BROADPHASE_ISAP,
 };
 
 #define SCENES(X) X(test_empty_and_single) X(test_uniform) X(test_mixed_sizes) \
