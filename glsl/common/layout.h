@@ -250,6 +250,33 @@ TB_STRUCT(tb_gpu_lbvh_bounds) {
 /* Most workgroups of broadphase/lbvh_bounds (a grid-stride loop covers the rest). */
 #define TB_LBVH_BOUNDS_GROUPS   1024
 
+/* Incremental 3-axis sort and sweep (src/broadphase/isap.c, glsl/broadphase/isap*): what one
+ * step leaves for the next, in the half of its parity (the next step reads it, writes the
+ * other half, so a step run again reads the same). */
+TB_STRUCT(tb_gpu_isap_header) {
+    TB_UVEC4 set;             /* x 1 once the half is written, y params.counts.w, z body slots,
+                                 w contact margin (float bits) of that step */
+    TB_VEC4 large;            /* x side beyond which a static body is "large", y z w unused */
+};
+/* Counts of one step (written anew each step) and the two halves' headers. */
+TB_STRUCT(tb_gpu_isap_control) {
+    TB_UVEC4 sort;            /* x endpoints sorted per axis (2 * slots), y first large and
+                                 z first dead entry of axis 0's order, w 1 when a body became
+                                 large or stopped being large */
+    TB_UVEC4 moved;           /* xy sum of how far the endpoints moved in the orders (low, high
+                                 word), z w unused */
+    TB_UVEC4 sweep_lo;        /* xyz per axis, the sum over bodies of the entries between
+                                 their begin and end: the cost of a sweep (low words) */
+    TB_UVEC4 sweep_hi;        /* xyz the high words */
+    TB_UVEC4 stats;           /* x pair searches run incrementally, y from scratch */
+    tb_gpu_isap_header header[2];
+};
+/* Push constant args.y of its kernels: the body capacity (stride of the per-axis arrays).
+ * address[0] orders of halves 0 and 1, [1] positions, [2] boxes, [3] xy keys (then the sorted
+ * endpoints), zw the control. */
+#define TB_ISAP_KEY_LARGE       TB_U(0xfffffffe) /* sort key of a large static's endpoints */
+#define TB_ISAP_KEY_DEAD        TB_U(0xffffffff) /* sort key of a dead slot's endpoints */
+
 /* Parallel primitives (glsl/prims, src/gpu/prims.c). Operands are device addresses passed
  * as push constants, each as a (low, high) uint pair so no shader needs int64; element
  * counts are read on the GPU from the uint at a `count` address and clamped to the largest

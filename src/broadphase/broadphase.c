@@ -14,7 +14,7 @@ static const tb_broadphase_ops* const ops_table[] = {
     [TB_BROADPHASE_GRID] = &tb_broadphase_grid,
     [TB_BROADPHASE_SAP] = NULL,
     [TB_BROADPHASE_LBVH] = &tb_broadphase_lbvh,
-    [TB_BROADPHASE_ISAP] = NULL,
+    [TB_BROADPHASE_ISAP] = &tb_broadphase_isap,
 };
 #define KINDS (sizeof ops_table / sizeof ops_table[0])
 
