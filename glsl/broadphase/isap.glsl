@@ -57,31 +57,10 @@ bool isap_old_valid()
 // A 64-bit count kept as two words, read approximately (it only steers a choice).
 float isap_wide(uint lo, uint hi) { return float(hi) * 4294967296.0 + float(lo); }
 
-// Axis whose sweep visits the fewest entries.
-uint isap_sweep_axis()
-{
-    IsapControl c = isap_control();
-    uint best = 0u;
-    float least = isap_wide(c.c.sweep_lo.x, c.c.sweep_hi.x);
-    for (uint k = 1u; k < 3u; k++) {
-        float cost = isap_wide(c.c.sweep_lo[k], c.c.sweep_hi[k]);
-        if (cost < least) { least = cost; best = k; }
-    }
-    return best;
-}
-
-// Search from scratch this step: no usable last step, a body became large or small, or
-// the incremental scans would visit more entries than a sweep (they read each passed
-// entry in two orders; never below 4 moves per body, so calm sparse worlds stay put).
+// Search from scratch this step (isap_decide chose it).
 bool isap_from_scratch()
 {
-    if (!isap_old_valid()) return true;
-    IsapControl c = isap_control();
-    if (c.c.sort.w != 0u) return true;
-    uint k = isap_sweep_axis();
-    float sweep = isap_wide(c.c.sweep_lo[k], c.c.sweep_hi[k]);
-    float moved = isap_wide(c.c.moved.x, c.c.moved.y);
-    return 2.0 * moved > max(sweep, 8.0 * float(isap_slots()));
+    return isap_control().c.search.x == 0u;
 }
 
 // Add each invocation's value to a count kept in two words (a carry goes to the high word):

@@ -30,8 +30,6 @@ void start_step(float large)
     IsapControl c = isap_control();
     c.c.sort = uvec4(2u * isap_slots(), 0u, 0u, 0u);
     c.c.moved = uvec4(0u);
-    c.c.sweep_lo = uvec4(0u);
-    c.c.sweep_hi = uvec4(0u);
     c.c.header[isap_new_half()].set = uvec4(1u, params.counts.w, params.counts.x,
                                             floatBitsToUint(params.contact.x));
     c.c.header[isap_new_half()].large = vec4(large, 0.0, 0.0, 0.0);

@@ -1,9 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// What decides between the incremental search and one from scratch (isap_from_scratch):
-// how far the endpoints moved between last step's orders and this step's (the work of the
-// incremental scans), what a sweep along each axis would visit (the entries between each
-// body's begin and end), and whether a body became large or stopped being large.
+// What decides between the incremental search and one from scratch (isap_decide): how far
+// the endpoints moved between last step's orders and this step's (the work of the
+// incremental scans), and whether a body became large or stopped being large.
 #include "world.glsl"
 #include "isap.glsl"
 
@@ -22,14 +21,11 @@ void main()
     uint n = isap_slots();
     bool old = isap_old_valid();
     uint moved = 0u;
-    uvec3 sweep = uvec3(0u);
     if (i < n) {
         IsapUints now = isap_place(isap_new_half());
         IsapUints before = isap_place(isap_old_half());
-        bool real = body_is(i, TB_BODY_FLAG_ALIVE) && !isap_large(i);
         for (uint k = 0u; k < 3u; k++) {
             uint b = now.v[isap_at(k, i)], e = now.v[isap_at(k, n + i)];
-            if (real) sweep[k] = min(e - b, MOST);
             if (old) moved += apart(b, before.v[isap_at(k, i)]) +
                               apart(e, before.v[isap_at(k, n + i)]);
         }
@@ -39,7 +35,4 @@ void main()
     }
     IsapControl c = isap_control();
     ISAP_ADD_WIDE(moved, c.c.moved.x, c.c.moved.y)
-    ISAP_ADD_WIDE(sweep.x, c.c.sweep_lo.x, c.c.sweep_hi.x)
-    ISAP_ADD_WIDE(sweep.y, c.c.sweep_lo.y, c.c.sweep_hi.y)
-    ISAP_ADD_WIDE(sweep.z, c.c.sweep_lo.z, c.c.sweep_hi.z)
 }

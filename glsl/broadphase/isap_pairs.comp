@@ -5,8 +5,7 @@
 // - incrementally: the pairs of its run last step that are still wanted (last step's pairs
 //   are last step's half of the pair array, found through last step's body_pairs), then the
 //   pairs its endpoints' moves started (below), then its pairs with large static bodies;
-// - from scratch: the pairs whose begin lies between its begin and end on the axis with the
-//   cheapest sweep, then its pairs with large static bodies.
+// - from scratch (isap_decide): nothing; the LBVH's search writes the step's pairs.
 // Pairs are (lower slot, higher slot), whoever finds them.
 //
 // Incremental scans: an endpoint e that moved from place o (last step's order) to place p
@@ -119,19 +118,6 @@ void keep_old(uint i)
     }
 }
 
-// From scratch: the begins between i's begin and end on the cheapest axis.
-void sweep(uint i)
-{
-    uint k = isap_sweep_axis();
-    IsapUints order = isap_order(isap_new_half());
-    IsapUints place = isap_place(isap_new_half());
-    uint last = place.v[isap_at(k, n + i)];
-    for (uint q = place.v[isap_at(k, i)] + 1u; q < last; q++) {
-        uint j = order.v[isap_at(k, q)];
-        if (j < n && bp_wanted(i, j)) bp_report(min(i, j), max(i, j));
-    }
-}
-
 // Large static bodies: their begins in axis 0's order, in slot order.
 void search_large(uint i)
 {
@@ -154,14 +140,11 @@ void main()
         if (scratch) isap_control().c.stats.y += 1u;
         else isap_control().c.stats.x += 1u;
     }
+    if (scratch) return;   /* the LBVH writes this step's pairs */
     bp_begin(i);
     if (body_is(i, TB_BODY_FLAG_ALIVE) && !isap_large(i)) {
-        if (scratch) {
-            sweep(i);
-        } else {
-            keep_old(i);
-            scan_moves(i);
-        }
+        keep_old(i);
+        scan_moves(i);
         if (body_is(i, TB_BODY_FLAG_DYNAMIC)) search_large(i);
     }
     bp_end(i);

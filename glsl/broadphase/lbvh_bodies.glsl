@@ -1,6 +1,6 @@
 // The lbvh broadphase's view of the bodies (src/broadphase/lbvh.c): which bodies the tree
 // holds, their centres' bounds and Morton codes. Needs world.glsl and the push constants
-// (tb_gpu_broadphase_push): address[0] keys | values, [1] bounds | nodes, [2] links.
+// (tb_gpu_broadphase_push): address[0] keys | values, [1] bounds | nodes, [2] links | skip.
 #ifndef TB_LBVH_BODIES_GLSL
 #define TB_LBVH_BODIES_GLSL
 
@@ -16,6 +16,13 @@ LbvhBounds lbvh_bounds() { return LbvhBounds(push.address[1].xy); }
 LbvhNodes lbvh_nodes() { return LbvhNodes(push.address[1].zw); }
 LbvhUints lbvh_links() { return LbvhUints(push.address[2].xy); }
 uint lbvh_capacity() { return push.args.y; }
+
+// Nothing to do: the step was abandoned, or the search runs inside another broadphase that
+// searched without it this step (the uint at address[2].zw is then nonzero; 0: none).
+bool lbvh_skipped()
+{
+    return step_aborted() || (push.address[2].zw != uvec2(0u) && LbvhUints(push.address[2].zw).v[0] != 0u);
+}
 
 // Floats as uints that order like them (negative ones flipped), never 0 for a finite float.
 uvec3 ordered_bits(vec3 f)

@@ -14,7 +14,7 @@ layout(push_constant) uniform Push { tb_gpu_broadphase_push push; };
 
 void main()
 {
-    if (step_aborted()) return;
+    if (lbvh_skipped()) return;
     uint n = counters.grid.z;
     uint stride = gl_NumWorkGroups.x * gl_NumWorkGroups.y * gl_WorkGroupSize.x;
     uvec3 hi = uvec3(0u), lo = uvec3(0u);

@@ -36,7 +36,7 @@ uint morton_code(vec3 c, vec3 lo, float extent)
 void main()
 {
     uint i = body_thread_index();
-    if (i >= counters.grid.z || step_aborted()) return;
+    if (i >= counters.grid.z || lbvh_skipped()) return;
     tb_gpu_lbvh_bounds b = lbvh_bounds().b;
     vec3 lo = from_ordered_bits(~b.lo.xyz), hi = from_ordered_bits(b.hi.xyz);
     vec3 size = b.hi.x == 0u ? vec3(0.0) : hi - lo;

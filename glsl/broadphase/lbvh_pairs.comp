@@ -52,7 +52,7 @@ void main()
 {
     uint s = body_thread_index();
     uint count = counters.grid.z;
-    if (s >= count || step_aborted()) return;
+    if (s >= count || lbvh_skipped()) return;
     if (s == 0u && !bp_writing()) clear_bounds();
     uint leaves = lbvh_links().v[lbvh_leaf_count_index(lbvh_capacity())];
     uint i = lbvh_values().v[s];

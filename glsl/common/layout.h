@@ -265,9 +265,9 @@ TB_STRUCT(tb_gpu_isap_control) {
                                  large or stopped being large */
     TB_UVEC4 moved;           /* xy sum of how far the endpoints moved in the orders (low, high
                                  word), z w unused */
-    TB_UVEC4 sweep_lo;        /* xyz per axis, the sum over bodies of the entries between
-                                 their begin and end: the cost of a sweep (low words) */
-    TB_UVEC4 sweep_hi;        /* xyz the high words */
+    TB_UVEC4 search;          /* isap_decide's choice: x 1 when this step searches incrementally
+                                 (the LBVH, the search from scratch, then skips), y the body
+                                 slots the LBVH sorts (0 when incremental), z w unused */
     TB_UVEC4 stats;           /* x pair searches run incrementally, y from scratch */
     tb_gpu_isap_header header[2];
 };

@@ -3,12 +3,13 @@
  * into place one at a time (sequential SAP), sort all of them on the three axes every step
  * and compare with last step's orders, read-only; an endpoint that moved looks at the ones
  * it passed, and those are where overlaps start. Pairs whose overlap ended are dropped from
- * last step's runs; a from-scratch sweep takes over when there is no usable last step or
- * the moves would cost more than a sweep.
+ * last step's runs. The linear BVH's search takes over (the seed's fallback to another
+ * broadphase) when there is no usable last step or the moves would cost more than it.
  *
  * Passes: keys (per body) -> 3 sorts (tb_prims_sort, 32-bit keys) -> ranks (orders and
- * places into this step's half) -> measure (moves, sweep costs) -> pair count, scan,
- * pair_check, pair write (tb_broadphase_record_pair_output).
+ * places into this step's half) -> measure (moves) -> decide -> the LBVH's build (skipped
+ * in incremental steps) -> pair count (the incremental one or the LBVH's), scan,
+ * pair_check, pair write (tb_broadphase_record_pair_outputs).
  *
  * What a step keeps for the next (orders, places, boxes, a header) lives in the half of its
  * parity, and last step's pairs are last step's half of the pair array: a step that is
@@ -42,11 +43,12 @@ static void isap_destroy(tb_world* w)
 {
     tb_isap_state* s = w->broadphase_state;
     if (!s) return;
-    VkPipeline all[] = { s->keys, s->ranks, s->measure, s->pairs };
+    VkPipeline all[] = { s->keys, s->ranks, s->measure, s->decide, s->pairs };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
     tb_buffer_destroy(&w->memory, &s->state);
     tb_buffer_destroy(&w->memory, &s->scratch);
+    tb_lbvh_search_destroy(w, s->scratch_search);
     free(s);
     w->broadphase_state = NULL;
 }
@@ -61,7 +63,9 @@ static tb_result isap_create(tb_world* w)
     tb_result r = tb_pipeline_create(p, "broadphase/isap_keys", TB_WORKGROUP_SIZE, &s->keys);
     if (!r) r = tb_pipeline_create(p, "broadphase/isap_ranks", TB_WORKGROUP_SIZE, &s->ranks);
     if (!r) r = tb_pipeline_create(p, "broadphase/isap_measure", TB_WORKGROUP_SIZE, &s->measure);
+    if (!r) r = tb_pipeline_create(p, "broadphase/isap_decide", 1, &s->decide);
     if (!r) r = tb_pipeline_create(p, "broadphase/isap_pairs", TB_WORKGROUP_SIZE, &s->pairs);
+    if (!r) r = tb_lbvh_search_create(w, &s->scratch_search);
     return r;
 }
 
@@ -78,6 +82,7 @@ static tb_result isap_reserve(tb_world* w, uint32_t capacity)
     tb_result r = tb_buffer_create(&w->memory, state_bytes(capacity), usage, 0, &s->state);
     if (!r) r = tb_buffer_create(&w->memory, tb_prims_sort_scratch(&w->prims, endpoints), usage,
                                  0, &s->scratch);
+    if (!r) r = tb_lbvh_search_reserve(w, s->scratch_search, capacity);
     if (!r) r = tb_transfer_begin(&w->transfer, 0);
     if (r) return r;
     vkCmdFillBuffer(w->transfer.cb, s->state.buffer, 0, VK_WHOLE_SIZE, 0);
@@ -121,15 +126,22 @@ static tb_result isap_record(tb_world* w, tb_pass_list* list)
 {
     tb_isap_state* s = w->broadphase_state;
     tb_gpu_ptr none = { 0 };
+    VkDeviceSize search = TB_ISAP_CONTROL_OFFSET + offsetof(tb_gpu_isap_control, search);
+    tb_gpu_ptr incremental = tb_gpu_ptr_of(&s->state, search);
+    tb_gpu_ptr scratch_slots = tb_gpu_ptr_of(&s->state, search + 4);
     tb_gpu_broadphase_push count = isap_push(s, TB_BROADPHASE_COUNT);
     tb_gpu_broadphase_push write = isap_push(s, TB_BROADPHASE_WRITE);
+    tb_pass counts[2], writes[2];
     tb_result r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = record_sorts(w, s, list);
     if (!r) r = tb_broadphase_add(w, list, s->ranks, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = tb_broadphase_add(w, list, s->measure, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass count_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass write_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
-    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
+    if (!r) r = tb_broadphase_add(w, list, s->decide, TB_DISPATCH_FIXED, 1, none, &count);
+    if (!r) r = tb_lbvh_search_record(w, s->scratch_search, list, scratch_slots, incremental,
+                                      &counts[1], &writes[1]);
+    counts[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
+    writes[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
+    if (!r) r = tb_broadphase_record_pair_outputs(w, list, counts, writes, 2);
     return r;
 }
 

@@ -2,12 +2,13 @@
 #ifndef TB_ISAP_H
 #define TB_ISAP_H
 
-#include "broadphase/broadphase.h"
+#include "broadphase/lbvh.h"
 
 /// The buffer holds, in this order: the control (tb_gpu_isap_control), the sort keys and
 /// the sorted endpoints (3 axes each), then per half the orders, the places and the boxes.
 typedef struct tb_isap_state {
-    VkPipeline keys, ranks, measure, pairs;
+    VkPipeline keys, ranks, measure, decide, pairs;
+    tb_lbvh_search* scratch_search; ///< the search from scratch, skipped in incremental steps
     tb_buffer state;           ///< everything the steps keep (see above)
     tb_buffer scratch;         ///< the sorts' scratch
     uint32_t capacity;         ///< body slots the buffers hold

@@ -14,7 +14,7 @@
  * Its arrays grow with the body capacity; the bounds live in a small buffer of their own
  * that the count pass clears for the next step.
  */
-#include "broadphase/broadphase.h"
+#include "broadphase/lbvh.h"
 
 #include <stdlib.h>
 
@@ -24,13 +24,14 @@
 #define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
 
-typedef struct lbvh_state {
+struct tb_lbvh_search {
     VkPipeline bounds, keys, pairs;
     tb_lbvh_kernels build;
     tb_buffer scene;                  /* tb_gpu_lbvh_bounds */
     tb_buffer keys_buf, values, nodes, links;
     uint32_t capacity;
-} lbvh_state;
+};
+typedef tb_lbvh_search lbvh_state;
 
 static void free_arrays(tb_world* w, lbvh_state* s)
 {
@@ -41,9 +42,8 @@ static void free_arrays(tb_world* w, lbvh_state* s)
     s->capacity = 0;
 }
 
-static void lbvh_destroy(tb_world* w)
+void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s)
 {
-    lbvh_state* s = w->broadphase_state;
     if (!s) return;
     VkPipeline all[] = { s->bounds, s->keys, s->pairs };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
@@ -52,7 +52,6 @@ static void lbvh_destroy(tb_world* w)
     free_arrays(w, s);
     tb_buffer_destroy(&w->memory, &s->scene);
     free(s);
-    w->broadphase_state = NULL;
 }
 
 /* The bounds start empty (all zero); after that every step leaves them so. */
@@ -67,11 +66,11 @@ static tb_result create_scene(tb_world* w, lbvh_state* s)
     return r;
 }
 
-static tb_result lbvh_create(tb_world* w)
+tb_result tb_lbvh_search_create(tb_world* w, tb_lbvh_search** out)
 {
     lbvh_state* s = calloc(1, sizeof *s);
+    *out = s;
     if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    w->broadphase_state = s;
     tb_pipelines* p = &w->pipelines;
     tb_result r = tb_pipeline_create(p, "broadphase/lbvh_bounds", TB_WORKGROUP_SIZE, &s->bounds);
     if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_keys", TB_WORKGROUP_SIZE, &s->keys);
@@ -82,9 +81,8 @@ static tb_result lbvh_create(tb_world* w)
 }
 
 /* Nothing in the arrays outlives a step, so growth replaces them. */
-static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
+tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capacity)
 {
-    lbvh_state* s = w->broadphase_state;
     if (capacity <= s->capacity) return TB_OK;
     free_arrays(w, s);
     VkDeviceSize per_body = (VkDeviceSize)(capacity ? capacity : 1) * sizeof(uint32_t);
@@ -103,7 +101,7 @@ static tb_gpu_ptr ptr_of(const tb_buffer* b)
 }
 
 /* The push constants every lbvh kernel of the broadphase takes (lbvh_bodies.glsl). */
-static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode)
+static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode, tb_gpu_ptr skip)
 {
     tb_gpu_broadphase_push push = { { mode, s->capacity, 0, 0 }, { { 0 } } };
     tb_broadphase_put_address(&push.address[0], 0, s->keys_buf.address);
@@ -111,15 +109,17 @@ static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode)
     tb_broadphase_put_address(&push.address[1], 0, s->scene.address);
     tb_broadphase_put_address(&push.address[1], 1, s->nodes.address);
     tb_broadphase_put_address(&push.address[2], 0, s->links.address);
+    tb_broadphase_put_address(&push.address[2], 1, skip.address);
     return push;
 }
 
-static tb_lbvh_build build_of(tb_world* w, const lbvh_state* s, tb_gpu_ptr slots)
+static tb_lbvh_build build_of(tb_world* w, const lbvh_state* s, tb_gpu_ptr slots, tb_gpu_ptr skip)
 {
     tb_lbvh_build b = {
         .capacity = s->capacity,
         .keys = ptr_of(&s->keys_buf), .items = ptr_of(&s->values), .count = slots,
-        .skip = tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, state)),
+        .skip = skip.address ? skip
+                             : tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, state)),
         .nodes = ptr_of(&s->nodes), .links = ptr_of(&s->links),
         .box_min = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MIN]),
         .box_max = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MAX]),
@@ -134,26 +134,57 @@ static uint32_t bounds_groups(uint32_t capacity)
     return groups < 1 ? 1 : groups > TB_LBVH_BOUNDS_GROUPS ? TB_LBVH_BOUNDS_GROUPS : groups;
 }
 
-static tb_result lbvh_record(tb_world* w, tb_pass_list* list)
+tb_result tb_lbvh_search_record(tb_world* w, tb_lbvh_search* s, tb_pass_list* list,
+                                tb_gpu_ptr count, tb_gpu_ptr skip, tb_pass* count_pass,
+                                tb_pass* write_pass)
 {
-    lbvh_state* s = w->broadphase_state;
     tb_sim* sim = &w->sim;
-    tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
     tb_gpu_ptr none = { 0 };
-    tb_gpu_broadphase_push count = body_push(s, TB_BROADPHASE_COUNT);
-    tb_gpu_broadphase_push write = body_push(s, TB_BROADPHASE_WRITE);
-    tb_lbvh_build build = build_of(w, s, slots);
+    tb_gpu_broadphase_push counting = body_push(s, TB_BROADPHASE_COUNT, skip);
+    tb_gpu_broadphase_push writing = body_push(s, TB_BROADPHASE_WRITE, skip);
+    tb_lbvh_build build = build_of(w, s, count, skip);
     tb_result r = tb_broadphase_add(w, list, s->bounds, TB_DISPATCH_FIXED,
-                                    bounds_groups(s->capacity), none, &count);
-    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
-    if (!r) r = tb_prims_sort(&w->prims, list, ptr_of(&s->keys_buf), ptr_of(&s->values), slots,
+                                    bounds_groups(s->capacity), none, &counting);
+    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &counting);
+    if (!r) r = tb_prims_sort(&w->prims, list, ptr_of(&s->keys_buf), ptr_of(&s->values), count,
                               sim->body_capacity, TB_LBVH_SORT_BITS, scratch);
     if (!r) r = tb_lbvh_record_build(&s->build, list, &w->diag, &build);
-    tb_pass count_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass write_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
+    *count_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &counting);
+    *write_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &writing);
+    return r;
+}
+
+/* ---- the lbvh broadphase: the search every step, never skipped ---------------------------- */
+
+static tb_result lbvh_create(tb_world* w)
+{
+    tb_lbvh_search* s = NULL;
+    tb_result r = tb_lbvh_search_create(w, &s);
+    w->broadphase_state = s;
+    return r;
+}
+
+static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
+{
+    return tb_lbvh_search_reserve(w, w->broadphase_state, capacity);
+}
+
+static tb_result lbvh_record(tb_world* w, tb_pass_list* list)
+{
+    tb_gpu_ptr slots = tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr none = { 0 };
+    tb_pass count_pass, write_pass;
+    tb_result r = tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &count_pass,
+                                        &write_pass);
     if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
     return r;
+}
+
+static void lbvh_destroy(tb_world* w)
+{
+    tb_lbvh_search_destroy(w, w->broadphase_state);
+    w->broadphase_state = NULL;
 }
 
 const tb_broadphase_ops tb_broadphase_lbvh = {
