@@ -3,7 +3,8 @@
 #   make deps       install missing Debian packages
 #   make test       build and run the tests on lavapipe with the validation layers on
 #   make run        install, build, run the default scene
-#   make bench SCENE=freefall N=100000 STEPS=200 [FRAMES=dir EVERY=k CONTACTS=1]
+#   make bench SCENE=freefall N=100000 STEPS=200 [BROADPHASE=grid|sap|lbvh|isap]
+#              [FRAMES=dir EVERY=k CONTACTS=1]
 #   make video SCENE=freefall N=2000 STEPS=240 [CONTACTS=1]  (build/freefall.mp4; needs ffmpeg)
 #   make clean
 # V=1 shows whole commands.
@@ -149,7 +150,7 @@ SCENE ?= freefall
 N     ?= 0
 STEPS ?= 0
 bench: all
-	$(Q)$(BUILD)/bench --scene $(SCENE) --n $(N) --steps $(STEPS) $(if $(FRAMES),--frames $(FRAMES) --every $(or $(EVERY),1) $(if $(CONTACTS),--contacts))
+	$(Q)$(BUILD)/bench --scene $(SCENE) --n $(N) --steps $(STEPS) $(if $(BROADPHASE),--broadphase $(BROADPHASE)) $(if $(FRAMES),--frames $(FRAMES) --every $(or $(EVERY),1) $(if $(CONTACTS),--contacts))
 
 # A video of a bench scene: make video SCENE=freefall N=2000 STEPS=240 (needs ffmpeg).
 video: all

@@ -66,6 +66,7 @@ typedef struct tb_vulkan_contacts {
     uint32_t count;             ///< manifolds of the last step
     uint32_t stride;            ///< bytes per manifold
     uint64_t generation;        ///< changes whenever the buffer is replaced
+    VkDeviceSize size;          ///< bytes of the buffer (it may pass maxStorageBufferRange)
 } tb_vulkan_contacts;
 
 TB_API tb_result tb_world_vulkan_contacts(tb_world* world, tb_vulkan_contacts* out);

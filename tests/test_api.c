@@ -399,11 +399,13 @@ static void test_world_create_errors(void** state)
         assert_true(tb_world_last_error(NULL)[0] != '\0');
     }
     def.device = NULL;
-    tb_world_def bad[3] = { def, def, def };
+    tb_world_def bad[5] = { def, def, def, def, def };
     bad[0].gravity.y = NAN;
     bad[1].max_rotation_per_step = NAN;
     memset(&bad[2], 0, sizeof bad[2]); /* not from tb_default_world_def */
-    for (int i = 0; i < 3; i++) {
+    bad[3].broadphase = (tb_broadphase)99;
+    bad[4].broadphase = (tb_broadphase)-1;
+    for (int i = 0; i < 5; i++) {
         tb_world* w = (tb_world*)&log;
         tb_result r = tb_world_create(&bad[i], &w);
         if (r == TB_OK) tb_world_destroy(w);
@@ -412,6 +414,35 @@ static void test_world_create_errors(void** state)
         assert_true(tb_world_last_error(NULL)[0] != '\0');
     }
     tb_world_destroy(NULL); /* documented: ignored */
+}
+
+/* The broadphase is chosen by the def, else by TUMBLE_BROADPHASE, and named in the stats. */
+static void test_broadphase_choice(void** state)
+{
+    (void)state;
+    assert_string_equal(tb_broadphase_name(TB_BROADPHASE_GRID), "grid");
+    assert_string_equal(tb_broadphase_name(TB_BROADPHASE_SAP), "sap");
+    assert_string_equal(tb_broadphase_name(TB_BROADPHASE_LBVH), "lbvh");
+    assert_string_equal(tb_broadphase_name(TB_BROADPHASE_ISAP), "isap");
+    assert_null(tb_broadphase_name((tb_broadphase)5));
+    char* saved = getenv("TUMBLE_BROADPHASE") ? strdup(getenv("TUMBLE_BROADPHASE")) : NULL;
+    tb_world_def def = tb_default_world_def();
+    setenv("TUMBLE_BROADPHASE", "no-such-broadphase", 1);
+    tb_world* w = NULL;
+    th_assert_result(tb_world_create(&def, &w), TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(NULL), "TUMBLE_BROADPHASE"));
+    setenv("TUMBLE_BROADPHASE", "GRID", 1);   /* any case */
+    w = th_world_create(&def);
+    assert_string_equal(th_stats(w).broadphase, "grid");
+    th_world_destroy(w);
+    def.broadphase = TB_BROADPHASE_GRID;   /* the def wins over the environment */
+    setenv("TUMBLE_BROADPHASE", "no-such-broadphase", 1);
+    w = th_world_create(&def);
+    assert_string_equal(th_stats(w).broadphase, "grid");
+    th_world_destroy(w);
+    if (saved) setenv("TUMBLE_BROADPHASE", saved, 1);
+    else unsetenv("TUMBLE_BROADPHASE");
+    free(saved);
 }
 
 /* ---- ids -------------------------------------------------------------------------------- */
@@ -595,6 +626,7 @@ int main(void)
         T(test_bad_shapes),
         T(test_bad_step_and_gravity),
         cmocka_unit_test(test_world_create_errors),
+        cmocka_unit_test(test_broadphase_choice),
         T(test_null_and_unknown_body_ids),
         T(test_foreign_body_id),
         T(test_stale_body_ids),

@@ -33,6 +33,7 @@ typedef struct fixture {
     uint32_t capacity;        ///< pair capacity of one half
     tb_body_id* ids;          ///< ids of the bodies, in slot order
     tb_buffer counters, pairs, manifolds, constraints, colour_list, colour_work, claim, solver_bodies;
+    uint32_t parity;              /* the half reset_counters chose: this step's manifolds */
 } fixture;
 
 static tb_buffer host_buffer(tb_world* w, VkDeviceSize bytes, VkBufferUsageFlags extra)
@@ -71,8 +72,6 @@ static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, 
     tb_pipelines* p = &w->pipelines;
     tb_pipelines_bind(p, TB_BIND_COUNTERS, f->counters.buffer);
     tb_pipelines_bind(p, TB_BIND_PAIRS, f->pairs.buffer);
-    tb_pipelines_bind(p, TB_BIND_MANIFOLDS, f->manifolds.buffer);
-    tb_pipelines_bind(p, TB_BIND_CONSTRAINTS, f->constraints.buffer);
     tb_pipelines_bind(p, TB_BIND_COLOUR_LIST, f->colour_list.buffer);
     tb_pipelines_bind(p, TB_BIND_COLOUR_WORK, f->colour_work.buffer);
     tb_pipelines_bind(p, TB_BIND_BODY_CLAIM, f->claim.buffer);
@@ -122,10 +121,7 @@ static void reset_counters(fixture* f, uint32_t pairs, uint32_t parity)
     uint32_t x = groups < max_x ? groups : max_x;
     c->pair_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     c->state = (tb_gpu_uvec4){ 0, parity, pairs, 0 };
-    /* The kernels see this step's manifolds as their own array: bind this half's. */
-    VkDeviceSize half = (VkDeviceSize)f->capacity * sizeof(tb_gpu_manifold);
-    tb_pipelines_bind_range(&f->w->pipelines, TB_BIND_MANIFOLDS, f->manifolds.buffer,
-                            parity * half, half);
+    f->parity = parity;
 }
 
 /* A pass of a world shader dispatched per body; the caller destroys its pipeline. */
@@ -140,12 +136,19 @@ static tb_pass per_body_pass(fixture* f, const char* shader)
 static void run_passes(fixture* f, const tb_gpu_params* params, const tb_pass_list* list)
 {
     tb_world* w = f->w;
+    /* The kernels reach the contact arrays by address: this half's manifolds as this
+     * step's, the other half's as last step's. */
+    tb_gpu_params with = *params;
+    VkDeviceSize half = (VkDeviceSize)f->capacity * sizeof(tb_gpu_manifold);
+    VkDeviceAddress m = f->manifolds.address;
+    with.contact_arrays[0] = tb_gpu_addresses(m + f->parity * half, m + (f->parity ^ 1u) * half);
+    with.contact_arrays[1] = tb_gpu_addresses(f->constraints.address, 0);
     VkCommandBuffer cb;
     th_assert_ok(tb_gpu_command_buffer(&w->gpu, &cb));
     VkCommandBufferBeginInfo begin = { .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO,
                                        .flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT };
     vkBeginCommandBuffer(cb, &begin);
-    vkCmdUpdateBuffer(cb, w->params_buffer.buffer, 0, sizeof *params, params);
+    vkCmdUpdateBuffer(cb, w->params_buffer.buffer, 0, sizeof with, &with);
     VkMemoryBarrier upload = { .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
                                .srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT,
                                .dstAccessMask = VK_ACCESS_UNIFORM_READ_BIT |

@@ -22,7 +22,8 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 128);
+    assert_int_equal(sizeof(tb_gpu_params), 160);
+    assert_int_equal(offsetof(tb_gpu_params, contact_arrays), 128);
     assert_int_equal(offsetof(tb_gpu_params, capacity), 64);
     assert_int_equal(offsetof(tb_gpu_params, contact), 80);
     assert_int_equal(offsetof(tb_gpu_params, soft), 96);
@@ -73,8 +74,7 @@ static void test_bindings_distinct(void** state)
                       TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS, TB_BIND_SOLVER_BODIES, TB_BIND_BODY_CLAIM,
                       TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
-                      TB_BIND_MANIFOLDS, TB_BIND_CONSTRAINTS, TB_BIND_COLOUR_LIST,
-                      TB_BIND_PREV_MANIFOLDS, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
+                      TB_BIND_COLOUR_LIST, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
                       TB_BIND_COLOUR_WORK };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {

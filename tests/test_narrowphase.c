@@ -40,9 +40,9 @@
 /* ---- plumbing: the kernel's buffers, one dispatch, read back ---------------------------- */
 
 enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS, BUF_COUNT };
+/* The manifolds are no bindings: the kernels find them at the params' addresses. */
 static const uint32_t rig_binding[BUF_COUNT] = { TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS,
-                                                 TB_BIND_PAIRS, TB_BIND_MANIFOLDS,
-                                                 TB_BIND_PREV_MANIFOLDS };
+                                                 TB_BIND_PAIRS, UINT32_MAX, UINT32_MAX };
 /* Most hull and box shapes a rig keeps the geometry of, in double. */
 #define HULL_CAP 1024u
 
@@ -66,7 +66,7 @@ typedef struct rig {
     uint32_t cap;                 /* pairs per half */
     VkPipeline pipeline, hull_points;   /* the narrowphase's two passes */
     VkCommandBuffer cb;
-    tb_buffer dev[BUF_COUNT];     /* device-local, bound to the world's set */
+    tb_buffer dev[BUF_COUNT];     /* device-local, bound to the world's set or addressed */
     tb_buffer up, down;           /* host-visible images of the four, back to back */
     /* Host images of the four buffers: uploaded whole by rig_run, read back whole after. */
     tb_gpu_counters counters;
@@ -127,7 +127,8 @@ static rig* rig_create(uint32_t cap)
     for (int i = 0; i < BUF_COUNT; i++) {
         VkBufferUsageFlags extra = i == BUF_COUNTERS ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
         th_assert_ok(tb_buffer_create(&w->memory, rig_bytes(r, i), usage | extra, 0, &r->dev[i]));
-        tb_pipelines_bind(&w->pipelines, rig_binding[i], r->dev[i].buffer);
+        if (rig_binding[i] != UINT32_MAX)
+            tb_pipelines_bind(&w->pipelines, rig_binding[i], r->dev[i].buffer);
     }
     tb_graph_invalidate(&w->graph);
     VkDeviceSize total = rig_offset(r, BUF_COUNT);
@@ -181,6 +182,8 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
     params.counts.x = w->store.slots;
     params.capacity.x = r->cap;
     params.contact.x = MARGIN;
+    params.contact_arrays[0] = tb_gpu_addresses(r->dev[BUF_MANIFOLDS].address,
+                                                r->dev[BUF_PREV_MANIFOLDS].address);
     for (int i = 0; i < BUF_COUNT; i++)
         memcpy((char*)r->up.mapped + rig_offset(r, i), rig_host(r, i, parity), rig_bytes(r, i));
 

@@ -297,7 +297,8 @@ static void test_stats(void** state)
     assert_true(st.records >= 1);
     assert_true(st.body_capacity >= 50);
     assert_in_range(st.stage_count, 3, TB_MAX_STAGES);
-    /* Listed in step order (DESIGN.md §1), with whichever broadphase the world runs. */
+    /* Listed in step order (DESIGN.md §1); the broadphase's stage is named after it
+     * (TUMBLE_BROADPHASE may choose another than the default). */
     char broadphase[64];
     snprintf(broadphase, sizeof broadphase, "broadphase/%s", st.broadphase);
     const char* order[] = { "step/begin", "broadphase/world_aabb", broadphase,

@@ -51,25 +51,29 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_GRID_TABLE      17 /* uvec2[]: per hash bucket, [start, end) into the sorted entries */
 #define TB_BIND_LARGE_FLAGS     18 /* uint[]: 1 for a static body too large for the grid */
 #define TB_BIND_LARGE_LIST      19 /* uint[]: bodies flagged large, in slot order */
-/* Pairs and contacts (sized by the pair capacity; the two halves alternate by step parity): */
+/* Pairs (sized by the pair capacity; the two halves alternate by step parity): */
 #define TB_BIND_PAIRS           20 /* uvec4[2 * pair cap]: x body a (owner), y body b, z colour, w unused */
-#define TB_BIND_MANIFOLDS       21 /* tb_gpu_manifold[pair cap]: this step's, indexed like its pairs */
-#define TB_BIND_CONSTRAINTS     22 /* tb_gpu_constraint[pair cap]: solver data of this step */
-#define TB_BIND_COLOUR_LIST     23 /* uint[pair cap]: pair indices (within the half) grouped by colour */
-#define TB_BIND_PREV_MANIFOLDS  24 /* tb_gpu_manifold[pair cap]: last step's, indexed like its pairs
-                                      (the other half); the warm start reads them */
+#define TB_BIND_COLOUR_LIST     21 /* uint[pair cap]: pair indices (within the half) grouped by colour */
 /* Convex hulls (sized by the hull data of the live shapes; tb_gpu_shape.hull locates a hull): */
-#define TB_BIND_HULL_VECTORS    25 /* vec4[]: each hull's vertices (xyz, w 0), then its face planes
+#define TB_BIND_HULL_VECTORS    22 /* vec4[]: each hull's vertices (xyz, w 0), then its face planes
                                       (xyz outward unit normal, w offset: dot(n, x) = w on the face) */
-#define TB_BIND_HULL_TOPOLOGY   26 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
+#define TB_BIND_HULL_TOPOLOGY   23 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
                                       f0 | f1 << 16: the faces left and right of v0 -> v1 seen from
                                       outside), then its faces (first | count << 16: the face's
                                       vertex indices at topology[face base + first ...], counter-
                                       clockwise seen from outside), then those indices */
-#define TB_BIND_COLOUR_WORK     27 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
+#define TB_BIND_COLOUR_WORK     24 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
                                       (each pair cap long) the colouring passes read and
                                       write in turn (tb_gpu_counters.colouring counts them) */
-#define TB_BIND_COUNT           28
+/* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
+ * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
+ * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
+ * many pairs a step can hold; memory does (world.glsl names them like arrays):
+ *   manifolds       tb_gpu_manifold[pair cap]: this step's, indexed like its pairs
+ *   prev_manifolds  tb_gpu_manifold[pair cap]: last step's, indexed like its pairs (the
+ *                   other half); the warm start reads them
+ *   constraints     tb_gpu_constraint[pair cap]: solver data of this step */
+#define TB_BIND_COUNT           25
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -134,6 +138,8 @@ TB_STRUCT(tb_gpu_params) {
     TB_VEC4 soft;           /* soft contact of one substep: x bias rate (1/s), y mass scale,
                                z impulse scale, w substep h (s) */
     TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
+    TB_UVEC4 contact_arrays[2]; /* device addresses as (low, high) pairs: [0].xy manifolds,
+                                   [0].zw prev_manifolds, [1].xy constraints, [1].zw unused */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
@@ -192,6 +198,84 @@ TB_STRUCT(tb_gpu_broadphase_push) {
 /* Modes of a pair search (args.x): count each finder's pairs, or write them. */
 #define TB_BROADPHASE_COUNT     TB_U(0)
 #define TB_BROADPHASE_WRITE     TB_U(1)
+
+/* ---- Linear BVH (src/gpu/lbvh.c, glsl/common/lbvh.glsl; the lbvh broadphase) ----------
+ * Karras 2012 over items sorted by key: leaf k is the k-th sorted item, internal node i
+ * (0 is the root) splits at the highest bit where its range's keys differ (equal keys by
+ * index). Nodes live in one array of 2 * capacity: internal nodes from 0, leaves from
+ * capacity. A node reference is an internal node's index, TB_LBVH_LEAF | k for leaf k, or
+ * TB_LBVH_END. Each node keeps its escape: the node that follows its subtree in depth-first
+ * order, so a query walks the tree without a stack (hit: go to the left child, miss or
+ * leaf: take the escape); started at a leaf's escape, it visits only the leaves after it. */
+#define TB_LBVH_LEAF            TB_U(0x80000000)
+#define TB_LBVH_END             TB_U(0xffffffff)
+#define TB_LBVH_KEY_BITS        30   /* Morton codes: 10 bits per axis */
+#define TB_LBVH_KEY_END         (TB_U(1) << TB_LBVH_KEY_BITS) /* keys from here on are no
+                                        leaves; they sort after every leaf */
+TB_STRUCT(tb_gpu_lbvh_node) {
+    TB_UVEC4 lo;              /* xyz box minimum (float bits); w internal: its left child (the
+                                 right one is links' start of left + 1), leaf: its item */
+    TB_UVEC4 hi;              /* xyz box maximum (float bits); w its escape (while building an
+                                 internal node: the last leaf of its range) */
+};
+/* The links array: sections of `capacity` uints, then the leaf count (one uint). */
+#define TB_LBVH_LINK_PARENT     0    /* parent of internal node i (the root's: TB_LBVH_END) */
+#define TB_LBVH_LINK_LEAF_PARENT 1   /* parent of leaf k */
+#define TB_LBVH_LINK_ARRIVALS   2    /* children of internal node i the refit has finished */
+#define TB_LBVH_LINK_START      3    /* the node whose range starts at leaf k > 0 (a right child) */
+#define TB_LBVH_LINK_SECTIONS   4
+/* Push constants of the build kernels (broadphase/lbvh_build_*). */
+TB_STRUCT(tb_gpu_lbvh_push) {
+    TB_UVEC4 args;            /* x capacity (items the arrays hold), y z w unused */
+    TB_UVEC4 keys;            /* xy sorted keys (uint), zw their items (uint) */
+    TB_UVEC4 counts;          /* xy address of the count of sorted keys, zw address of a uint
+                                 that, when nonzero, says do nothing (0: none) */
+    TB_UVEC4 tree;            /* xy nodes, zw links */
+    TB_UVEC4 boxes;           /* per item, xy minimum and zw maximum corners (vec4, xyz used) */
+};
+/* The lbvh broadphase's keys beyond the tree: large static bodies (tested by every dynamic
+ * body from the run of these keys), then dead slots. Sorted with 31 key bits. */
+#define TB_LBVH_KEY_LARGE       TB_LBVH_KEY_END
+#define TB_LBVH_KEY_DEAD        (TB_LBVH_KEY_END + TB_U(1))
+#define TB_LBVH_SORT_BITS       31
+/* Static bodies whose side is at least this are unbounded (planes): out of the scene bounds. */
+#define TB_LBVH_UNBOUNDED_SIDE  1.0e15
+/* Centre bounds of the lbvh broadphase's tree bodies: xyz of `hi` the largest centre
+ * coordinates, of `lo` the smallest, as order-preserving uints (lo inverted) so both grow
+ * by atomicMax from 0, which means none. */
+TB_STRUCT(tb_gpu_lbvh_bounds) {
+    TB_UVEC4 hi;              /* xyz ordered bits of the largest centre, w unused */
+    TB_UVEC4 lo;              /* xyz inverted ordered bits of the smallest centre, w unused */
+};
+/* Most workgroups of broadphase/lbvh_bounds (a grid-stride loop covers the rest). */
+#define TB_LBVH_BOUNDS_GROUPS   1024
+
+/* Incremental 3-axis sort and sweep (src/broadphase/isap.c, glsl/broadphase/isap*): what one
+ * step leaves for the next, in the half of its parity (the next step reads it, writes the
+ * other half, so a step run again reads the same). */
+TB_STRUCT(tb_gpu_isap_header) {
+    TB_UVEC4 set;             /* x 1 once the half is written, y params.counts.w, z body slots,
+                                 w contact margin (float bits) of that step */
+    TB_VEC4 large;            /* x side beyond which a static body is "large", y z w unused */
+};
+/* Counts of one step (written anew each step) and the two halves' headers. */
+TB_STRUCT(tb_gpu_isap_control) {
+    TB_UVEC4 sort;            /* x endpoints sorted per axis (2 * slots), y first large and
+                                 z first dead entry of axis 0's order, w 1 when a body became
+                                 large or stopped being large */
+    TB_UVEC4 moved;           /* xy sum of how far the endpoints moved in the orders (low, high
+                                 word), z w unused */
+    TB_UVEC4 search;          /* isap_decide's choice: x 1 when this step searches incrementally
+                                 (the LBVH, the search from scratch, then skips), y the body
+                                 slots the LBVH sorts (0 when incremental), z w unused */
+    TB_UVEC4 stats;           /* x pair searches run incrementally, y from scratch */
+    tb_gpu_isap_header header[2];
+};
+/* Push constant args.y of its kernels: the body capacity (stride of the per-axis arrays).
+ * address[0] orders of halves 0 and 1, [1] positions, [2] boxes, [3] xy keys (then the sorted
+ * endpoints), zw the control. */
+#define TB_ISAP_KEY_LARGE       TB_U(0xfffffffe) /* sort key of a large static's endpoints */
+#define TB_ISAP_KEY_DEAD        TB_U(0xffffffff) /* sort key of a dead slot's endpoints */
 
 /* 1-axis sort and sweep (src/broadphase/sap.c, glsl/broadphase/sap*). Every kernel takes
  * the same tb_gpu_broadphase_push; its device addresses, by index (address[i / 2], xy for

@@ -3,6 +3,9 @@
 #ifndef TB_WORLD_GLSL
 #define TB_WORLD_GLSL
 
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
 #include "layout.h"
 
 layout(local_size_x_id = TB_SPEC_WORKGROUP_SIZE) in;
@@ -29,13 +32,17 @@ layout(set = 0, binding = TB_BIND_GRID_TABLE, std430) buffer GridTable { uvec2 g
 layout(set = 0, binding = TB_BIND_LARGE_FLAGS, std430) buffer LargeFlags { uint large_flags[]; };
 layout(set = 0, binding = TB_BIND_LARGE_LIST, std430) buffer LargeList { uint large_list[]; };
 layout(set = 0, binding = TB_BIND_PAIRS, std430) buffer Pairs { uvec4 pairs[]; };
-layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) buffer Manifolds { tb_gpu_manifold manifolds[]; };
-layout(set = 0, binding = TB_BIND_PREV_MANIFOLDS, std430) buffer PrevManifolds { tb_gpu_manifold prev_manifolds[]; };
-layout(set = 0, binding = TB_BIND_CONSTRAINTS, std430) buffer Constraints { tb_gpu_constraint constraints[]; };
 layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint colour_list[]; };
 layout(set = 0, binding = TB_BIND_COLOUR_WORK, std430) buffer ColourWork { uint colour_work[]; };
 layout(set = 0, binding = TB_BIND_HULL_VECTORS, std430) readonly buffer HullVectors { vec4 hull_vectors[]; };
 layout(set = 0, binding = TB_BIND_HULL_TOPOLOGY, std430) readonly buffer HullTopology { uint hull_topology[]; };
+
+// The contact arrays live at device addresses (see layout.h); these names read like arrays.
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer ManifoldArray { tb_gpu_manifold v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer ConstraintArray { tb_gpu_constraint v[]; };
+#define manifolds (ManifoldArray(params.contact_arrays[0].xy).v)
+#define prev_manifolds (ManifoldArray(params.contact_arrays[0].zw).v)
+#define constraints (ConstraintArray(params.contact_arrays[1].xy).v)
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()

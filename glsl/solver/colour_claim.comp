@@ -49,7 +49,7 @@ void main()
         }
     }
     if (push.args.w == 0u) {
-        uint constraints = subgroupAdd(points > 0u ? 1u : 0u);
-        if (subgroupElect() && constraints > 0u) atomicAdd(counters.solver.y, constraints);
+        uint found = subgroupAdd(points > 0u ? 1u : 0u);
+        if (subgroupElect() && found > 0u) atomicAdd(counters.solver.y, found);
     }
 }

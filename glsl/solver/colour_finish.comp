@@ -14,9 +14,9 @@
 // barriers at this size.
 #include "world.glsl"
 
-uint batches_of(uint constraints)
+uint batches_of(uint count)
 {
-    return (constraints + SUBGROUP_SIZE - 1u) / SUBGROUP_SIZE;
+    return (count + SUBGROUP_SIZE - 1u) / SUBGROUP_SIZE;
 }
 
 void write_colour(uint c)

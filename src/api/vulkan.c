@@ -54,5 +54,6 @@ tb_result tb_world_vulkan_contacts(tb_world* w, tb_vulkan_contacts* out)
     out->count = pairs <= w->sim.pair_capacity ? pairs : 0;
     out->stride = sizeof(tb_gpu_manifold);
     out->generation = w->buffer_generation;
+    out->size = w->sim.pair[TB_SIM_MANIFOLDS].size;
     return TB_OK;
 }

@@ -96,11 +96,11 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_hull_table_init(w);
     if (!r) r = tb_body_store_init(&w->store, &w->memory, &w->pipelines, &w->transfer,
                                    def->initial_body_capacity);
-    uint32_t pairs = def->initial_pair_capacity ? def->initial_pair_capacity
-                                                : 4 * (w->store.capacity ? w->store.capacity : 1);
+    uint64_t pairs = def->initial_pair_capacity ? def->initial_pair_capacity
+                                                : 4 * (uint64_t)(w->store.capacity ? w->store.capacity : 1);
     if (!r) r = tb_prims_init(&w->prims, &w->pipelines);
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
-                            w->store.capacity, pairs);
+                            w->store.capacity, pairs);   /* clamped to the device's limit */
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_broadphase_shared_create(w);
@@ -249,6 +249,10 @@ static void write_params(tb_world* w, float dt)
                                 w->contact_push_speed, 0 };
     p->soft = tb_contact_softness(w, dt / (float)w->substeps, 1.0);
     p->soft_static = tb_contact_softness(w, dt / (float)w->substeps, 2.0);
+    const tb_buffer* pair = w->sim.pair;
+    p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
+                                            pair[TB_SIM_PREV_MANIFOLDS].address);
+    p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address, 0);
 }
 
 tb_result tb_world_prepare_shapes(tb_world* w)
@@ -322,21 +326,13 @@ static tb_result submit_steps(tb_world* w, uint32_t n)
     return r;
 }
 
-/* A step the GPU abandoned: grow what overflowed so the step fits when run again. */
-/* Most pairs per half the pair buffers can hold on this device (manifolds are the largest). */
-static uint64_t pair_limit(const tb_world* w)
-{
-    uint64_t by_range = w->gpu.props.limits.maxStorageBufferRange / sizeof(tb_gpu_constraint);
-    return by_range < TB_MAX_PAIR_CAPACITY ? by_range : TB_MAX_PAIR_CAPACITY;
-}
-
 /* A step the GPU abandoned: grow what overflowed so the step fits when run again. Pairs get
  * a quarter more than needed (at least a quarter more than before), within the device. */
 static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
 {
     tb_result r = TB_OK;
     if (c->state.x & TB_ABORT_PAIRS) {
-        uint64_t limit = pair_limit(w), need = c->state.w;
+        uint64_t limit = tb_sim_pair_limit(&w->sim), need = c->state.w;
         if (need > limit)
             return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step found %llu contact pairs, more "
                            "than the %llu this device's buffers can hold",

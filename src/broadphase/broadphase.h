@@ -75,6 +75,12 @@ tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline
 tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
                                            const tb_pass* count_pass, const tb_pass* write_pass);
 
+/// The same with `n` searches of which each step runs one (the others skip on the GPU): all
+/// count passes, the scan and check, all write passes.
+tb_result tb_broadphase_record_pair_outputs(tb_world* w, tb_pass_list* list,
+                                            const tb_pass* count_passes,
+                                            const tb_pass* write_passes, uint32_t n);
+
 /// A device address as the (low, high) pair the shaders take.
 void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address);
 

@@ -228,8 +228,10 @@ static tb_result no_device_error(tb_gpu* gpu, VkPhysicalDevice* devices, uint32_
 
 static void read_device_facts(tb_gpu* gpu)
 {
+    VkPhysicalDeviceMaintenance3Properties maintenance3 = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES };
     VkPhysicalDeviceDriverProperties driver = {
-        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES };
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES, .pNext = &maintenance3 };
     VkPhysicalDeviceSubgroupProperties subgroup = {
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES, .pNext = &driver };
     VkPhysicalDeviceProperties2 props = {
@@ -237,6 +239,7 @@ static void read_device_facts(tb_gpu* gpu)
     vkGetPhysicalDeviceProperties2(gpu->physical, &props);
     gpu->props = props.properties;
     gpu->subgroup_size = subgroup.subgroupSize;
+    gpu->max_allocation = maintenance3.maxMemoryAllocationSize;
     gpu->is_cpu = gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     snprintf(gpu->driver, sizeof gpu->driver, "%s %s", driver.driverName, driver.driverInfo);
     vkGetPhysicalDeviceMemoryProperties(gpu->physical, &gpu->memory_props);

@@ -17,6 +17,7 @@ typedef struct tb_gpu {
     VkPhysicalDeviceMemoryProperties memory_props;
     char driver[2 * VK_MAX_DRIVER_NAME_SIZE + VK_MAX_DRIVER_INFO_SIZE];
     uint32_t subgroup_size;
+    VkDeviceSize max_allocation;     ///< maxMemoryAllocationSize: the largest single buffer
     uint32_t timestamp_valid_bits;  ///< 0: the queue has no timestamps
     int is_cpu;
     VkCommandPool command_pool;     ///< resettable command buffers, compute queue

@@ -147,7 +147,7 @@ static tb_result arena_new_block(tb_gpu* gpu, tb_arena* arena, VkDeviceSize size
     };
     VkMemoryAllocateInfo info = {
         .sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO,
-        .pNext = arena->host_visible ? NULL : &flags,
+        .pNext = &flags,
         .allocationSize = size, .memoryTypeIndex = arena->memory_type,
     };
     tb_result r = tb_vk_check(gpu->diag, vkAllocateMemory(gpu->device, &info, NULL, &block->memory),
@@ -188,8 +188,11 @@ tb_result tb_buffer_create(tb_memory* memory, VkDeviceSize size, VkBufferUsageFl
 {
     tb_gpu* gpu = memory->gpu;
     memset(out, 0, sizeof *out);
-    /* Device-local buffers all have an address: the primitives take them as pointers. */
-    if (!host_visible) usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+    /* Device-local buffers all have an address: the primitives take them as pointers, and
+     * the step reaches its largest arrays through addresses (no descriptor range limits
+     * them). Host-visible storage buffers (test rigs) get one too. */
+    int addressed = !host_visible || (usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    if (addressed) usage |= VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
     VkBufferCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO, .size = size, .usage = usage,
         .sharingMode = VK_SHARING_MODE_EXCLUSIVE,
@@ -208,7 +211,7 @@ tb_result tb_buffer_create(tb_memory* memory, VkDeviceSize size, VkBufferUsageFl
     out->mapped = block->mapped ? (char*)block->mapped + out->offset : NULL;
     r = tb_vk_check(gpu->diag, vkBindBufferMemory(gpu->device, out->buffer, block->memory,
                                                  out->offset), "vkBindBufferMemory");
-    if (!r && !host_visible) {
+    if (!r && addressed) {
         VkBufferDeviceAddressInfo address = {
             .sType = VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO, .buffer = out->buffer };
         out->address = vkGetBufferDeviceAddress(gpu->device, &address);

@@ -41,7 +41,7 @@ typedef struct tb_buffer {
     VkDeviceSize offset;       ///< offset of the buffer in its block
     VkDeviceSize reserved;     ///< bytes reserved in the block (size rounded up)
     void* mapped;              ///< host address for host buffers, else NULL
-    VkDeviceAddress address;   ///< device address of device-local buffers, else 0
+    VkDeviceAddress address;   ///< device address (device-local and host storage buffers), else 0
 } tb_buffer;
 
 tb_result tb_memory_init(tb_memory* memory, tb_gpu* gpu);

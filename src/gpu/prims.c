@@ -51,8 +51,7 @@ static uint32_t tiles_of(uint32_t count, uint32_t tile)
     return (uint32_t)(((uint64_t)count + tile - 1) / tile);
 }
 
-/* A pair of addresses as the shaders read them: (low, high) of a, then of b. */
-static tb_gpu_uvec4 two_addresses(VkDeviceAddress a, VkDeviceAddress b)
+tb_gpu_uvec4 tb_gpu_addresses(VkDeviceAddress a, VkDeviceAddress b)
 {
     tb_gpu_uvec4 v = { (uint32_t)a, (uint32_t)(a >> 32), (uint32_t)b, (uint32_t)(b >> 32) };
     return v;
@@ -171,7 +170,7 @@ static tb_result add_args_pass(tb_prims* prims, tb_pass_list* list, tb_gpu_ptr c
                                uint32_t largest, uint32_t per_group, tb_gpu_ptr args)
 {
     tb_gpu_indirect_push push = {
-        .ptrs = two_addresses(count.address, args.address),
+        .ptrs = tb_gpu_addresses(count.address, args.address),
         .args = { per_group, prims->max_groups_x, largest, 0 },
     };
     return add_fixed(prims, list, prims->indirect_args, &push, sizeof push, 1);
@@ -207,7 +206,7 @@ tb_result tb_prims_fill(tb_prims* prims, tb_pass_list* list, tb_gpu_ptr dst, tb_
         return TB_OK; /* nothing to fill */
     }
     tb_gpu_fill_push push = {
-        .dst = two_addresses(dst.address, count.address),
+        .dst = tb_gpu_addresses(dst.address, count.address),
         .args = { fixed_count, value, 0, 0 },
     };
     return add_fixed(prims, list, prims->fill, &push, sizeof push, groups);
@@ -250,8 +249,8 @@ static tb_result record_scan(tb_prims* prims, tb_pass_list* list, uint32_t mode,
     if (r) return r;
     tb_gpu_ptr args = scratch, sums = ptr_add(scratch, ARGS_BYTES);
     tb_gpu_scan_push push = {
-        .data = two_addresses(in.address, out.address),
-        .aux = two_addresses(sums.address, total.address),
+        .data = tb_gpu_addresses(in.address, out.address),
+        .aux = tb_gpu_addresses(sums.address, total.address),
         .count = { (uint32_t)count.address, (uint32_t)(count.address >> 32), max_count, mode },
     };
     r = add_args_pass(prims, list, count, max_count, TB_PRIMS_SCAN_TILE, args);
@@ -342,7 +341,7 @@ tb_result tb_prims_sort(tb_prims* prims, tb_pass_list* list, tb_gpu_ptr keys, tb
     VkDeviceAddress key_arrays[2] = { keys.address, s.keys.address };
     VkDeviceAddress value_arrays[2] = { values.address, s.values.address };
     tb_gpu_sort_push push = {
-        .spine = two_addresses(s.spine.address, s.totals.address),
+        .spine = tb_gpu_addresses(s.spine.address, s.totals.address),
         .count = { (uint32_t)count.address, (uint32_t)(count.address >> 32), max_count, 0 },
         .plan = { (uint32_t)s.args.address, (uint32_t)(s.args.address >> 32),
                   prims->group_size / prims->subgroup_size, prims->sort_max_blocks },
@@ -351,13 +350,13 @@ tb_result tb_prims_sort(tb_prims* prims, tb_pass_list* list, tb_gpu_ptr keys, tb
     uint32_t pass = 0;
     for (uint32_t shift = 0; !r && shift < key_bits; shift += TB_PRIMS_RADIX_BITS, pass++) {
         uint32_t bits = key_bits - shift < TB_PRIMS_RADIX_BITS ? key_bits - shift : TB_PRIMS_RADIX_BITS;
-        push.keys = two_addresses(key_arrays[pass & 1], key_arrays[(pass + 1) & 1]);
-        push.values = two_addresses(value_arrays[pass & 1], value_arrays[(pass + 1) & 1]);
+        push.keys = tb_gpu_addresses(key_arrays[pass & 1], key_arrays[(pass + 1) & 1]);
+        push.values = tb_gpu_addresses(value_arrays[pass & 1], value_arrays[(pass + 1) & 1]);
         r = sort_pass(prims, list, &push, &s, shift, bits);
     }
     if (!r && (pass & 1)) { /* the last pass wrote the temporary arrays */
-        push.keys = two_addresses(s.keys.address, keys.address);
-        push.values = two_addresses(s.values.address, values.address);
+        push.keys = tb_gpu_addresses(s.keys.address, keys.address);
+        push.values = tb_gpu_addresses(s.values.address, values.address);
         r = add_indirect(prims, list, prims->copy, &push, sizeof push, s.args);
     }
     return r;

@@ -33,6 +33,7 @@
 
 #include "gpu/graph.h"
 #include "gpu/memory.h"
+#include "layout.h"
 
 /// A place in device memory: the buffer and offset (for indirect arguments and copies) and
 /// the device address of that same byte (for the shaders).
@@ -41,6 +42,9 @@ typedef struct tb_gpu_ptr {
     VkDeviceSize offset;
     VkDeviceAddress address;
 } tb_gpu_ptr;
+
+/// Two device addresses as the shaders read them (a uvec4): (low, high) of a, then of b.
+tb_gpu_uvec4 tb_gpu_addresses(VkDeviceAddress a, VkDeviceAddress b);
 
 /// The pointer to byte `offset` of a device-local buffer.
 tb_gpu_ptr tb_gpu_ptr_of(const tb_buffer* buffer, VkDeviceSize offset);

@@ -14,11 +14,11 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
     [TB_SIM_LARGE_LIST] = TB_BIND_LARGE_LIST, [TB_SIM_BODY_SCRATCH] = UINT32_MAX,
 };
 
+/* The contact arrays are reached by address (tb_gpu_params.contact_arrays), not bound. */
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
-    [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = TB_BIND_MANIFOLDS,
-    [TB_SIM_CONSTRAINTS] = TB_BIND_CONSTRAINTS, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
-    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK,
-    [TB_SIM_PREV_MANIFOLDS] = TB_BIND_PREV_MANIFOLDS,
+    [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = UINT32_MAX,
+    [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
+    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -57,6 +57,18 @@ static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
 static tb_diag* diag_of(const tb_sim* sim)
 {
     return sim->memory->gpu->diag;
+}
+
+uint32_t tb_sim_pair_limit(const tb_sim* sim)
+{
+    const tb_gpu* gpu = sim->memory->gpu;
+    /* Bound arrays: the pairs' two halves are the largest. Addressed ones: one allocation. */
+    uint64_t by_range = gpu->props.limits.maxStorageBufferRange / pair_bytes(TB_SIM_PAIRS, 1);
+    uint64_t by_allocation = gpu->max_allocation / pair_bytes(TB_SIM_CONSTRAINTS, 1);
+    uint64_t limit = TB_MAX_PAIR_CAPACITY;
+    if (by_range < limit) limit = by_range;
+    if (by_allocation && by_allocation < limit) limit = by_allocation;
+    return (uint32_t)limit;
 }
 
 static tb_result check_range(const tb_sim* sim, VkDeviceSize bytes, const char* what)
@@ -139,14 +151,13 @@ tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
 tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
 {
     if (pairs <= sim->pair_capacity && sim->pair[0].buffer) return TB_OK;
-    if (pairs > TB_MAX_PAIR_CAPACITY)
-        return tb_fail(diag_of(sim), TB_ERROR_CAPACITY, "%u pairs are more than the %u the "
-                       "solver's colouring can index", pairs, TB_MAX_PAIR_CAPACITY);
+    if (pairs > tb_sim_pair_limit(sim))
+        return tb_fail(diag_of(sim), TB_ERROR_CAPACITY, "%u pairs are more than the %u this "
+                       "device's buffers (and the solver's colouring) can hold", pairs,
+                       tb_sim_pair_limit(sim));
     tb_buffer fresh[TB_SIM_PAIR_BUFFER_COUNT];
     memset(fresh, 0, sizeof fresh);
-    tb_result r = check_range(sim, pair_bytes(TB_SIM_CONSTRAINTS, pairs), "contact constraints");
-    if (!r) r = check_range(sim, pair_bytes(TB_SIM_MANIFOLDS, pairs), "contact manifolds");
-    if (!r) r = tb_transfer_begin(t, 0);
+    tb_result r = tb_transfer_begin(t, 0);
     if (r) return r;
     for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT && !r; b++) {
         /* Both halves of the pairs move to their new places (half h starts at h * capacity);
@@ -167,7 +178,7 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
 }
 
 tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
-                      tb_transfer* t, uint32_t body_capacity, uint32_t pair_capacity)
+                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity)
 {
     memset(sim, 0, sizeof *sim);
     sim->memory = memory;
@@ -185,7 +196,8 @@ tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, t
     r = tb_transfer_end(t);
     if (!r) r = tb_gpu_submit_wait(memory->gpu, &t->cb, 1);
     if (!r) r = tb_sim_reserve_bodies(sim, t, body_capacity);
-    if (!r) r = tb_sim_reserve_pairs(sim, t, pair_capacity);
+    uint32_t limit = tb_sim_pair_limit(sim);
+    if (!r) r = tb_sim_reserve_pairs(sim, t, pair_capacity < limit ? (uint32_t)pair_capacity : limit);
     sim->growths = 0;
     return r;
 }

@@ -41,12 +41,15 @@ typedef struct tb_sim {
 } tb_sim;
 
 tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
-                      tb_transfer* t, uint32_t body_capacity, uint32_t pair_capacity);
+                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity);
 void tb_sim_destroy(tb_sim* sim);
 
 /// Match the body capacity (after the body store grew). Keeps the per-body pair ranges.
 tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity);
-/// Hold at least `pairs` pairs per half. Keeps both halves of pairs and manifolds.
+/// Most pairs per half this device can hold: the bound pair array within the storage
+/// buffer range, the addressed contact arrays within one allocation, the colouring's index.
+uint32_t tb_sim_pair_limit(const tb_sim* sim);
+/// Hold at least `pairs` pairs per half (at most tb_sim_pair_limit). Keeps both halves of pairs and manifolds.
 tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs);
 
 /// The counters as the last executed step left them.

@@ -1,7 +1,7 @@
 /* bench: times a scene step by step on one device and prints a table plus one JSON line.
  *
  *   bench --scene NAME --n N --steps S [--warmup W] [--seed K] [--device D]
- *         [--csv FILE] [--json-only] [--help]
+ *         [--broadphase grid|sap|lbvh|isap] [--csv FILE] [--json-only] [--help]
  *
  * N or S of 0 mean the scene's defaults (`make bench` passes 0 when they are unset).
  * The last line of stdout is always the JSON record, so scripts can take `tail -n 1`.
@@ -27,6 +27,7 @@ typedef struct options {
     uint32_t warmup;
     uint32_t seed;
     const char* device;   /* NULL: the library's choice (TUMBLE_DEVICE, else best GPU) */
+    tb_broadphase broadphase; /* TB_BROADPHASE_DEFAULT: the library's choice */
     const char* csv_path; /* NULL: no CSV row */
     int json_only;
     const char* frames;   /* NULL: no pictures; else a folder for frame_NNNNN.png */
@@ -65,19 +66,31 @@ static void print_usage(FILE* f)
 {
     fprintf(f,
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
-            "             [--device D] [--csv FILE] [--json-only]\n"
+            "             [--device D] [--broadphase B] [--csv FILE] [--json-only]\n"
             "             [--frames DIR [--every K] [--contacts]] [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
             "  --seed        seed of the scene's jitter (default 1)\n"
             "  --device      device index or name substring (default: TUMBLE_DEVICE, else "
             "the best GPU)\n"
+            "  --broadphase  grid, sap, lbvh or isap (default: TUMBLE_BROADPHASE, else the\n"
+            "                library's choice)\n"
             "  --csv         append one result row to FILE (header written if new)\n"
             "  --json-only   print only the JSON line\n"
             "  --frames      write a PNG of every K-th timed step into DIR (tools/render/video\n"
             "                makes a video of them); --every defaults to 1\n"
             "  --contacts    draw contact points and normals in the frames\n");
     scene_print_list(f);
+}
+
+static int parse_broadphase(const char* text, tb_broadphase* out)
+{
+    for (int k = TB_BROADPHASE_GRID; tb_broadphase_name((tb_broadphase)k); k++)
+        if (strcmp(text, tb_broadphase_name((tb_broadphase)k)) == 0) {
+            *out = (tb_broadphase)k;
+            return 1;
+        }
+    return 0;
 }
 
 /* Returns -1 to go on, else the exit code (0 for --help, 2 for a bad command line). */
@@ -102,6 +115,8 @@ static int parse_args(int argc, char** argv, options* o)
             o->scene_name = v;
         } else if (strcmp(a, "--device") == 0) {
             o->device = v;
+        } else if (strcmp(a, "--broadphase") == 0) {
+            ok = parse_broadphase(v, &o->broadphase);
         } else if (strcmp(a, "--csv") == 0) {
             o->csv_path = v;
         } else if (strcmp(a, "--n") == 0) {
@@ -123,7 +138,8 @@ static int parse_args(int argc, char** argv, options* o)
         }
         if (!ok) {
             fprintf(stderr, "bench: option '%s' needs a value%s\n", a,
-                    v ? " that is a non-negative integer" : "");
+                    !v ? "" : strcmp(a, "--broadphase") == 0 ? ": grid, sap, lbvh or isap"
+                                                             : " that is a non-negative integer");
             return 2;
         }
         i += takes_value;
@@ -301,6 +317,7 @@ typedef struct report {
     const tb_device_info* dev;
     const scene* sc;
     uint32_t n, steps, body_count;
+    const char* broadphase;
     const samples* s;
     const summary* sum;
     const scene_checks* checks;
@@ -316,6 +333,8 @@ static void print_json(FILE* f, const report* r)
     json_key(f, "scene");
     json_string(f, r->sc->name);
     fprintf(f, ", \"n\": %u, \"steps\": %u", r->n, r->steps);
+    json_key(f, "broadphase");
+    json_string(f, r->broadphase);
     json_key(f, "ms_step_median");
     json_number(f, r->sum->gpu_median);
     json_key(f, "ms_step_p90");
@@ -345,6 +364,7 @@ static void print_table(FILE* f, const report* r)
     fprintf(f, "scene          %s\n", r->sc->name);
     fprintf(f, "n              %u (bodies %u)\n", r->n, r->body_count);
     fprintf(f, "steps          %u\n", r->steps);
+    fprintf(f, "broadphase     %s\n", r->broadphase);
     fprintf(f, "gpu ms/step    median %.4f  p90 %.4f\n", r->sum->gpu_median, r->sum->gpu_p90);
     fprintf(f, "wall ms/step   median %.4f\n", r->sum->wall_median);
     fprintf(f, "stages (median ms)\n");
@@ -376,7 +396,8 @@ static int append_csv(const char* path, const report* r)
     /* "a" mode's initial position is implementation-defined; seek to learn the size. */
     fseek(f, 0, SEEK_END);
     if (ftell(f) == 0)
-        fputs("device,scene,n,steps,ms_step_median,ms_step_p90,ms_wall_median,stages,checks\n", f);
+        fputs("device,scene,n,steps,ms_step_median,ms_step_p90,ms_wall_median,stages,checks,"
+              "broadphase\n", f);
     csv_string(f, r->dev->name);
     fprintf(f, ",%s,%u,%u,%.6f,%.6f,%.6f,\"", r->sc->name, r->n, r->steps,
             r->sum->gpu_median, r->sum->gpu_p90, r->sum->wall_median);
@@ -385,7 +406,7 @@ static int append_csv(const char* path, const report* r)
     fputs("\",\"", f);
     for (uint32_t i = 0; i < r->checks->count; i++)
         fprintf(f, "%s%s=%.6g", i ? ";" : "", r->checks->items[i].key, r->checks->items[i].value);
-    fputs("\"\n", f);
+    fprintf(f, "\",%s\n", r->broadphase);
     int ok = !ferror(f);
     if (fclose(f) != 0) ok = 0;
     if (!ok) fprintf(stderr, "bench: writing '%s' failed\n", path);
@@ -400,6 +421,7 @@ static tb_world* create_world(const options* o)
     /* Room beyond n so the timed steps never grow buffers (growth re-records). */
     def.initial_body_capacity = o->n <= UINT32_MAX - 16 ? o->n + 16 : o->n;
     def.device = o->device;
+    def.broadphase = o->broadphase;
     tb_world* world = NULL;
     tb_result r = tb_world_create(&def, &world);
     if (r != TB_OK) fail(NULL, "tb_world_create", r);
@@ -408,7 +430,8 @@ static tb_world* create_world(const options* o)
 
 /* Builds, warms up, times and checks; fills what the report needs. Returns the exit code. */
 static int run_bench(tb_world* world, const scene* sc, const options* o, samples* s,
-                     tb_device_info* dev, scene_checks* checks, uint32_t* body_count)
+                     tb_device_info* dev, scene_checks* checks, uint32_t* body_count,
+                     const char** broadphase)
 {
     tb_result r = tb_world_device_info(world, dev);
     if (r != TB_OK) return fail(world, "tb_world_device_info", r);
@@ -432,7 +455,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
     else if ((r = tb_world_get_stats(world, &st)) != TB_OK)
         code = fail(world, "tb_world_get_stats", r);
     else
-        *body_count = st.body_count;
+        *body_count = st.body_count, *broadphase = st.broadphase;
     tr_destroy(frames.renderer);
     sc->destroy(inst);
     return code;
@@ -440,7 +463,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, 10, 1, NULL, NULL, 0, NULL, 1, 0 };
+    options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0 };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);
@@ -465,12 +488,13 @@ int main(int argc, char** argv)
     tb_device_info dev;
     scene_checks checks = { 0 };
     uint32_t body_count = 0;
-    code = run_bench(world, sc, &o, &s, &dev, &checks, &body_count);
+    const char* broadphase = "";   /* the library's static name: valid after the world */
+    code = run_bench(world, sc, &o, &s, &dev, &checks, &body_count, &broadphase);
     tb_world_destroy(world);
     if (code == 0) {
         summary sum;
         summarise(&s, &sum);
-        report rep = { &dev, sc, o.n, o.steps, body_count, &s, &sum, &checks };
+        report rep = { &dev, sc, o.n, o.steps, body_count, broadphase, &s, &sum, &checks };
         if (!o.json_only) print_table(stdout, &rep);
         print_json(stdout, &rep);
         if (o.csv_path && !append_csv(o.csv_path, &rep)) code = 1;

@@ -312,7 +312,11 @@ static tb_result prepare_contacts(tr_renderer* r, tr_frame* f)
     res = tr_bind_contacts(r, &c);
     if (res) return res;
     f->first_manifold = (uint32_t)(c.offset / c.stride);
-    f->manifolds = c.count;
+    /* A world past one binding's range shows the contacts the binding holds. */
+    VkDeviceSize range = c.size < r->max_storage_range ? c.size : r->max_storage_range;
+    uint64_t bound = range / c.stride;
+    uint64_t shown = bound > f->first_manifold ? bound - f->first_manifold : 0;
+    f->manifolds = c.count < shown ? c.count : (uint32_t)shown;
     return TB_OK;
 }
 

@@ -142,6 +142,7 @@ tb_result tr_gpu_init(tr_renderer* r)
     vkGetPhysicalDeviceProperties(r->dev.physical_device, &props);
     vkGetPhysicalDeviceMemoryProperties(r->dev.physical_device, &r->memory_properties);
     r->max_image_size = props.limits.maxImageDimension2D;
+    r->max_storage_range = props.limits.maxStorageBufferRange;
     /* The vertex shaders read 7 body arrays; the guaranteed minimum is only 4. */
     if (props.limits.maxPerStageDescriptorStorageBuffers < 7)
         return tr_fail(r, TB_ERROR_DEVICE, "the renderer needs 7 storage buffers per shader "

@@ -57,6 +57,7 @@ struct tr_renderer {
     VkPhysicalDeviceMemoryProperties memory_properties;
     VkFormat depth_format;
     uint32_t max_image_size;
+    VkDeviceSize max_storage_range;   /* maxStorageBufferRange: one binding's most bytes */
 
     VkCommandPool command_pool;
     VkCommandBuffer cb;

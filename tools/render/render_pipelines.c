@@ -32,7 +32,7 @@ static tb_result create_layouts(tr_renderer* r)
     VkDescriptorSetLayoutBinding bindings[BINDING_COUNT];
     for (uint32_t i = 0; i < BODY_BINDING_COUNT; i++)
         bindings[i] = vertex_storage(BODY_BINDINGS[i]);
-    bindings[BODY_BINDING_COUNT] = vertex_storage(TB_BIND_MANIFOLDS);
+    bindings[BODY_BINDING_COUNT] = vertex_storage(TR_BIND_MANIFOLDS);
     VkDescriptorSetLayoutCreateInfo set_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
         .bindingCount = BINDING_COUNT, .pBindings = bindings,
@@ -111,10 +111,11 @@ tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* c)
         return TB_OK;
     if (!c->manifolds)
         return tr_fail(r, TB_ERROR_DEVICE, "the world has no GPU buffer for its manifolds");
-    VkDescriptorBufferInfo info = { c->manifolds, 0, VK_WHOLE_SIZE };
+    VkDeviceSize range = c->size < r->max_storage_range ? c->size : r->max_storage_range;
+    VkDescriptorBufferInfo info = { c->manifolds, 0, range - range % c->stride };
     VkWriteDescriptorSet write = {
         .sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, .dstSet = r->set,
-        .dstBinding = TB_BIND_MANIFOLDS, .descriptorCount = 1,
+        .dstBinding = TR_BIND_MANIFOLDS, .descriptorCount = 1,
         .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .pBufferInfo = &info,
     };
     vkUpdateDescriptorSets(r->dev.device, 1, &write, 0, NULL);

@@ -59,6 +59,9 @@ tb_result mixed_build(tb_world* world, const scene_params* params, scene_instanc
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
 
+/* sizes.c */
+tb_result sizes_build(tb_world* world, const scene_params* params, scene_instance** out);
+
 /* hulls.c */
 tb_result hulls_build(tb_world* world, const scene_params* params, scene_instance** out);
 

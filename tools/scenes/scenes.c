@@ -228,6 +228,9 @@ static const scene scenes[] = {
     { "boxes", "N boxes on a jittered grid dropped into a walled box; checks nan, "
                "escaped, max_penetration", 1.0f / 60.0f, 10000, 300,
       boxes_build, pile_check, instance_free },
+    { "mixed", "spheres and boxes of sizes spread 1:100 (most small, few large) dropped "
+               "into a walled box; checks nan, escaped, max_penetration", 1.0f / 60.0f, 10000,
+      300, sizes_build, pile_check, instance_free },
     { "pile", "spheres and boxes (half each) dropped into a walled box: the default "
               "scene", 1.0f / 60.0f, 4000, 360, mixed_build, pile_check, instance_free },
     { "stack", "N unit boxes in one column at rest on a plane; checks drift (largest "

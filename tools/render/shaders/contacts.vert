@@ -1,13 +1,14 @@
 #version 450
 /* Contact overlay: one instance per manifold of the world's last step, read from the
- * world's manifold buffer (bound whole; pc.mode.w is the first manifold of the last step).
+ * world's manifold buffer (bound whole, or as much as one binding may hold; pc.mode.w is the
+ * first manifold of the last step).
  * Each of the manifold's points gets a short line along the normal (from body a towards b)
  * and a small cross; vertices of points past the manifold's count are hidden. LINE_LIST,
  * TB_MAX_MANIFOLD_POINTS * TR_CONTACT_VERTICES_PER_POINT vertices per instance. */
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-layout(set = 0, binding = TB_BIND_MANIFOLDS, std430) readonly buffer Manifolds {
+layout(set = 0, binding = TR_BIND_MANIFOLDS, std430) readonly buffer Manifolds {
     tb_gpu_manifold manifolds[];
 };
 

@@ -22,6 +22,10 @@
 #define TR_FLAG_GRID          TR_U(1)  /* draw grid lines on planes */
 #define TR_FLAG_DEFAULT_PLANE TR_U(2)  /* one horizontal grid under the scene, not a body */
 
+/* The renderer's binding of the world's manifolds (its own set; the world reaches them by
+ * address): past the world's bindings, so the body arrays keep the world's numbers. */
+#define TR_BIND_MANIFOLDS TB_BIND_COUNT
+
 /* Contact overlay (contacts.vert). One instance per manifold, LINE_LIST: first the normals
  * of its TB_MAX_MANIFOLD_POINTS points (2 vertices each), then their crosses (3 axis-aligned
  * segments, 6 vertices each), so a point's cross is drawn over the normals. */

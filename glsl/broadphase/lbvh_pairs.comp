@@ -1,0 +1,67 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Pair finding in the linear BVH, run twice with the same walk (pairs.glsl): count, then
+// write. Thread s takes the s-th sorted entry. A leaf walks the tree from its own escape,
+// which visits only the leaves after it in the sorted order, so each pair of tree bodies is
+// found once, by its earlier leaf, and the walk needs no stack; a dynamic body then tests
+// every large static body (the run of TB_LBVH_KEY_LARGE keys after the leaves). Pairs are
+// stored as (lower slot, higher slot) whoever finds them. Large and dead entries find none.
+// The count pass also clears the scene bounds for the next step (lbvh_bounds).
+#include "world.glsl"
+#include "pairs.glsl"
+#include "lbvh_bodies.glsl"
+
+void report(uint i, uint j)
+{
+    bp_report(min(i, j), max(i, j));
+}
+
+void search_tree(uint i, bool i_dynamic, tb_gpu_lbvh_node own, float margin)
+{
+    LbvhNodes nodes = lbvh_nodes();
+    uint capacity = lbvh_capacity();
+    vec3 lo = lbvh_min(own), hi = lbvh_max(own);
+    uint ref = own.hi.w;
+    while (ref != TB_LBVH_END) {
+        tb_gpu_lbvh_node n = nodes.node[lbvh_slot(ref, capacity)];
+        bool hit = lbvh_touches(lo, hi, margin, n);
+        if (hit && lbvh_is_leaf(ref)) {
+            uint j = n.lo.w;
+            if (i_dynamic || body_is(j, TB_BODY_FLAG_DYNAMIC)) report(i, j);
+        }
+        ref = hit && !lbvh_is_leaf(ref) ? n.lo.w : n.hi.w;
+    }
+}
+
+void search_large(uint i, uint first, uint count)
+{
+    LbvhUints keys = lbvh_keys();
+    LbvhUints values = lbvh_values();
+    for (uint s = first; s < count && keys.v[s] == TB_LBVH_KEY_LARGE; s++) {
+        uint j = values.v[s];
+        if (aabbs_touch(i, j)) report(i, j);
+    }
+}
+
+void clear_bounds()
+{
+    lbvh_bounds().b = tb_gpu_lbvh_bounds(uvec4(0u), uvec4(0u));
+}
+
+void main()
+{
+    uint s = body_thread_index();
+    uint count = counters.grid.z;
+    if (s >= count || lbvh_skipped()) return;
+    if (s == 0u && !bp_writing()) clear_bounds();
+    uint leaves = lbvh_links().v[lbvh_leaf_count_index(lbvh_capacity())];
+    uint i = lbvh_values().v[s];
+    bp_begin(i);
+    if (s < leaves) {
+        bool dynamic = body_is(i, TB_BODY_FLAG_DYNAMIC);
+        tb_gpu_lbvh_node own = lbvh_nodes().node[lbvh_capacity() + s];
+        search_tree(i, dynamic, own, params.contact.x);
+        if (dynamic) search_large(i, leaves, count);
+    }
+    bp_end(i);
+}

@@ -1,0 +1,150 @@
+/* The incremental 3-axis sort and sweep (glsl/broadphase/isap*), after the parallel
+ * incremental SAP of Coumans' GDC 2013 GPU rigid-body talk: instead of swapping endpoints
+ * into place one at a time (sequential SAP), sort all of them on the three axes every step
+ * and compare with last step's orders, read-only; an endpoint that moved looks at the ones
+ * it passed, and those are where overlaps start. Pairs whose overlap ended are dropped from
+ * last step's runs. The linear BVH's search takes over (the seed's fallback to another
+ * broadphase) when there is no usable last step or the moves would cost more than it.
+ *
+ * Passes: keys (per body) -> 3 sorts (tb_prims_sort, 32-bit keys) -> ranks (orders and
+ * places into this step's half) -> measure (moves) -> decide -> the LBVH's build (skipped
+ * in incremental steps) -> pair count (the incremental one or the LBVH's), scan,
+ * pair_check, pair write (tb_broadphase_record_pair_outputs).
+ *
+ * What a step keeps for the next (orders, places, boxes, a header) lives in the half of its
+ * parity, and last step's pairs are last step's half of the pair array: a step that is
+ * abandoned and run again reads exactly what it read the first time. Growing the pair
+ * buffer keeps both halves (gpu/sim.c); growing the body capacity zeroes this state, which
+ * makes the next step search from scratch. */
+#include "broadphase/isap.h"
+
+#include <stdlib.h>
+
+#include "api/world.h"
+
+#define CONTROL_BYTES 256   /* the control, rounded up */
+
+/* Bytes of one per-axis array: 3 axes of 2 endpoints per body slot. */
+static VkDeviceSize axis_bytes(uint32_t capacity)
+{
+    return (VkDeviceSize)capacity * 6 * sizeof(uint32_t);
+}
+
+static VkDeviceSize keys_offset(void) { return CONTROL_BYTES; }
+static VkDeviceSize order_offset(uint32_t c, int half) { return CONTROL_BYTES + (2 + half) * axis_bytes(c); }
+static VkDeviceSize place_offset(uint32_t c, int half) { return CONTROL_BYTES + (4 + half) * axis_bytes(c); }
+static VkDeviceSize box_offset(uint32_t c, int half)
+{
+    return CONTROL_BYTES + 6 * axis_bytes(c) + (VkDeviceSize)half * c * 2 * sizeof(tb_gpu_vec4);
+}
+static VkDeviceSize state_bytes(uint32_t c) { return box_offset(c, 2); }
+
+static void isap_destroy(tb_world* w)
+{
+    tb_isap_state* s = w->broadphase_state;
+    if (!s) return;
+    VkPipeline all[] = { s->keys, s->ranks, s->measure, s->decide, s->pairs };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    tb_buffer_destroy(&w->memory, &s->state);
+    tb_buffer_destroy(&w->memory, &s->scratch);
+    tb_lbvh_search_destroy(w, s->scratch_search);
+    free(s);
+    w->broadphase_state = NULL;
+}
+
+static tb_result isap_create(tb_world* w)
+{
+    _Static_assert(sizeof(tb_gpu_isap_control) <= CONTROL_BYTES, "control fits its room");
+    tb_isap_state* s = calloc(1, sizeof *s);
+    if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    w->broadphase_state = s;
+    tb_pipelines* p = &w->pipelines;
+    tb_result r = tb_pipeline_create(p, "broadphase/isap_keys", TB_WORKGROUP_SIZE, &s->keys);
+    if (!r) r = tb_pipeline_create(p, "broadphase/isap_ranks", TB_WORKGROUP_SIZE, &s->ranks);
+    if (!r) r = tb_pipeline_create(p, "broadphase/isap_measure", TB_WORKGROUP_SIZE, &s->measure);
+    if (!r) r = tb_pipeline_create(p, "broadphase/isap_decide", 1, &s->decide);
+    if (!r) r = tb_pipeline_create(p, "broadphase/isap_pairs", TB_WORKGROUP_SIZE, &s->pairs);
+    if (!r) r = tb_lbvh_search_create(w, &s->scratch_search);
+    return r;
+}
+
+/* New, zeroed buffers for `capacity` slots: a zero header means "no last step". */
+static tb_result isap_reserve(tb_world* w, uint32_t capacity)
+{
+    tb_isap_state* s = w->broadphase_state;
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    tb_buffer_destroy(&w->memory, &s->state);
+    tb_buffer_destroy(&w->memory, &s->scratch);
+    s->capacity = 0;
+    uint32_t endpoints = capacity * 2;
+    tb_result r = tb_buffer_create(&w->memory, state_bytes(capacity), usage, 0, &s->state);
+    if (!r) r = tb_buffer_create(&w->memory, tb_prims_sort_scratch(&w->prims, endpoints), usage,
+                                 0, &s->scratch);
+    if (!r) r = tb_lbvh_search_reserve(w, s->scratch_search, capacity);
+    if (!r) r = tb_transfer_begin(&w->transfer, 0);
+    if (r) return r;
+    vkCmdFillBuffer(w->transfer.cb, s->state.buffer, 0, VK_WHOLE_SIZE, 0);
+    r = tb_transfer_end(&w->transfer);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    if (!r) s->capacity = capacity;
+    return r;
+}
+
+static tb_gpu_broadphase_push isap_push(const tb_isap_state* s, uint32_t mode)
+{
+    tb_gpu_broadphase_push push = { { mode, s->capacity, 0, 0 }, { { 0 } } };
+    VkDeviceAddress base = s->state.address;
+    for (int half = 0; half < 2; half++) {
+        tb_broadphase_put_address(&push.address[0], half, base + order_offset(s->capacity, half));
+        tb_broadphase_put_address(&push.address[1], half, base + place_offset(s->capacity, half));
+        tb_broadphase_put_address(&push.address[2], half, base + box_offset(s->capacity, half));
+    }
+    tb_broadphase_put_address(&push.address[3], 0, base + keys_offset());
+    tb_broadphase_put_address(&push.address[3], 1, base + TB_ISAP_CONTROL_OFFSET);
+    return push;
+}
+
+/* Sort each axis's 2n endpoint keys, carrying the endpoint ids along. */
+static tb_result record_sorts(tb_world* w, const tb_isap_state* s, tb_pass_list* list)
+{
+    tb_gpu_ptr count = tb_gpu_ptr_of(&s->state, TB_ISAP_CONTROL_OFFSET +
+                                                    offsetof(tb_gpu_isap_control, sort));
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(&s->scratch, 0);
+    VkDeviceSize axis = axis_bytes(s->capacity) / 3;
+    tb_result r = TB_OK;
+    for (uint32_t k = 0; k < 3 && !r; k++) {
+        tb_gpu_ptr keys = tb_gpu_ptr_of(&s->state, keys_offset() + k * axis);
+        tb_gpu_ptr ids = tb_gpu_ptr_of(&s->state, keys_offset() + axis_bytes(s->capacity) + k * axis);
+        r = tb_prims_sort(&w->prims, list, keys, ids, count, s->capacity * 2, 32, scratch);
+    }
+    return r;
+}
+
+static tb_result isap_record(tb_world* w, tb_pass_list* list)
+{
+    tb_isap_state* s = w->broadphase_state;
+    tb_gpu_ptr none = { 0 };
+    VkDeviceSize search = TB_ISAP_CONTROL_OFFSET + offsetof(tb_gpu_isap_control, search);
+    tb_gpu_ptr incremental = tb_gpu_ptr_of(&s->state, search);
+    tb_gpu_ptr scratch_slots = tb_gpu_ptr_of(&s->state, search + 4);
+    tb_gpu_broadphase_push count = isap_push(s, TB_BROADPHASE_COUNT);
+    tb_gpu_broadphase_push write = isap_push(s, TB_BROADPHASE_WRITE);
+    tb_pass counts[2], writes[2];
+    tb_result r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = record_sorts(w, s, list);
+    if (!r) r = tb_broadphase_add(w, list, s->ranks, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_broadphase_add(w, list, s->measure, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_broadphase_add(w, list, s->decide, TB_DISPATCH_FIXED, 1, none, &count);
+    if (!r) r = tb_lbvh_search_record(w, s->scratch_search, list, scratch_slots, incremental,
+                                      &counts[1], &writes[1]);
+    counts[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
+    writes[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
+    if (!r) r = tb_broadphase_record_pair_outputs(w, list, counts, writes, 2);
+    return r;
+}
+
+const tb_broadphase_ops tb_broadphase_isap = {
+    "isap", "broadphase/isap", isap_create, isap_reserve, isap_record, isap_destroy,
+};

@@ -1,0 +1,192 @@
+/* The linear BVH broadphase (glsl/broadphase/lbvh_*.comp): every step builds a tree over
+ * the bodies' boxes and each body walks it for its pairs.
+ *
+ *   lbvh_bounds      bounds of the live bodies' centres (planes left out)
+ *   lbvh_keys        a Morton code per body in those bounds; large static bodies (wider
+ *                    than the scene of centres) and dead slots get keys after every code
+ *   sort             (key, slot) by 31 bits: leaves, then large bodies, then dead slots
+ *   build            Karras' hierarchy, then the bottom-up refit (gpu/lbvh.h)
+ *   lbvh_pairs       count, scan, check, write (tb_broadphase_record_pair_output): each
+ *                    leaf walks the leaves after it, each dynamic body the large ones
+ *
+ * Large statics stay out of the tree so a plane cannot make every node above it infinite;
+ * the bounds leave planes out so the codes keep their resolution where the bodies are.
+ * Its arrays grow with the body capacity; the bounds live in a small buffer of their own
+ * that the count pass clears for the next step.
+ */
+#include "broadphase/lbvh.h"
+
+#include <stdlib.h>
+
+#include "api/world.h"
+#include "gpu/lbvh.h"
+
+#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
+               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
+
+struct tb_lbvh_search {
+    VkPipeline bounds, keys, pairs;
+    tb_lbvh_kernels build;
+    tb_buffer scene;                  /* tb_gpu_lbvh_bounds */
+    tb_buffer keys_buf, values, nodes, links;
+    uint32_t capacity;
+};
+typedef tb_lbvh_search lbvh_state;
+
+static void free_arrays(tb_world* w, lbvh_state* s)
+{
+    tb_buffer_destroy(&w->memory, &s->keys_buf);
+    tb_buffer_destroy(&w->memory, &s->values);
+    tb_buffer_destroy(&w->memory, &s->nodes);
+    tb_buffer_destroy(&w->memory, &s->links);
+    s->capacity = 0;
+}
+
+void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s)
+{
+    if (!s) return;
+    VkPipeline all[] = { s->bounds, s->keys, s->pairs };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    tb_lbvh_kernels_destroy(&s->build, w->gpu.device);
+    free_arrays(w, s);
+    tb_buffer_destroy(&w->memory, &s->scene);
+    free(s);
+}
+
+/* The bounds start empty (all zero); after that every step leaves them so. */
+static tb_result create_scene(tb_world* w, lbvh_state* s)
+{
+    tb_result r = tb_buffer_create(&w->memory, sizeof(tb_gpu_lbvh_bounds), USAGE, 0, &s->scene);
+    if (!r) r = tb_transfer_begin(&w->transfer, 0);
+    if (r) return r;
+    vkCmdFillBuffer(w->transfer.cb, s->scene.buffer, 0, VK_WHOLE_SIZE, 0);
+    r = tb_transfer_end(&w->transfer);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    return r;
+}
+
+tb_result tb_lbvh_search_create(tb_world* w, tb_lbvh_search** out)
+{
+    lbvh_state* s = calloc(1, sizeof *s);
+    *out = s;
+    if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    tb_pipelines* p = &w->pipelines;
+    tb_result r = tb_pipeline_create(p, "broadphase/lbvh_bounds", TB_WORKGROUP_SIZE, &s->bounds);
+    if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_keys", TB_WORKGROUP_SIZE, &s->keys);
+    if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_pairs", TB_WORKGROUP_SIZE, &s->pairs);
+    if (!r) r = tb_lbvh_kernels_create(&s->build, p);
+    if (!r) r = create_scene(w, s);
+    return r;
+}
+
+/* Nothing in the arrays outlives a step, so growth replaces them. */
+tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capacity)
+{
+    if (capacity <= s->capacity) return TB_OK;
+    free_arrays(w, s);
+    VkDeviceSize per_body = (VkDeviceSize)(capacity ? capacity : 1) * sizeof(uint32_t);
+    tb_result r = tb_buffer_create(&w->memory, per_body, USAGE, 0, &s->keys_buf);
+    if (!r) r = tb_buffer_create(&w->memory, per_body, USAGE, 0, &s->values);
+    if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_node_bytes(capacity), USAGE, 0, &s->nodes);
+    if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_link_bytes(capacity), USAGE, 0, &s->links);
+    if (r) free_arrays(w, s);
+    else s->capacity = capacity;
+    return r;
+}
+
+static tb_gpu_ptr ptr_of(const tb_buffer* b)
+{
+    return tb_gpu_ptr_of(b, 0);
+}
+
+/* The push constants every lbvh kernel of the broadphase takes (lbvh_bodies.glsl). */
+static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode, tb_gpu_ptr skip)
+{
+    tb_gpu_broadphase_push push = { { mode, s->capacity, 0, 0 }, { { 0 } } };
+    tb_broadphase_put_address(&push.address[0], 0, s->keys_buf.address);
+    tb_broadphase_put_address(&push.address[0], 1, s->values.address);
+    tb_broadphase_put_address(&push.address[1], 0, s->scene.address);
+    tb_broadphase_put_address(&push.address[1], 1, s->nodes.address);
+    tb_broadphase_put_address(&push.address[2], 0, s->links.address);
+    tb_broadphase_put_address(&push.address[2], 1, skip.address);
+    return push;
+}
+
+static tb_lbvh_build build_of(tb_world* w, const lbvh_state* s, tb_gpu_ptr slots, tb_gpu_ptr skip)
+{
+    tb_lbvh_build b = {
+        .capacity = s->capacity,
+        .keys = ptr_of(&s->keys_buf), .items = ptr_of(&s->values), .count = slots,
+        .skip = skip.address ? skip
+                             : tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, state)),
+        .nodes = ptr_of(&s->nodes), .links = ptr_of(&s->links),
+        .box_min = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MIN]),
+        .box_max = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MAX]),
+        .rule = TB_DISPATCH_PER_BODY,
+    };
+    return b;
+}
+
+static uint32_t bounds_groups(uint32_t capacity)
+{
+    uint32_t groups = (capacity + TB_WORKGROUP_SIZE - 1) / TB_WORKGROUP_SIZE;
+    return groups < 1 ? 1 : groups > TB_LBVH_BOUNDS_GROUPS ? TB_LBVH_BOUNDS_GROUPS : groups;
+}
+
+tb_result tb_lbvh_search_record(tb_world* w, tb_lbvh_search* s, tb_pass_list* list,
+                                tb_gpu_ptr count, tb_gpu_ptr skip, tb_pass* count_pass,
+                                tb_pass* write_pass)
+{
+    tb_sim* sim = &w->sim;
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    tb_gpu_ptr none = { 0 };
+    tb_gpu_broadphase_push counting = body_push(s, TB_BROADPHASE_COUNT, skip);
+    tb_gpu_broadphase_push writing = body_push(s, TB_BROADPHASE_WRITE, skip);
+    tb_lbvh_build build = build_of(w, s, count, skip);
+    tb_result r = tb_broadphase_add(w, list, s->bounds, TB_DISPATCH_FIXED,
+                                    bounds_groups(s->capacity), none, &counting);
+    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &counting);
+    if (!r) r = tb_prims_sort(&w->prims, list, ptr_of(&s->keys_buf), ptr_of(&s->values), count,
+                              sim->body_capacity, TB_LBVH_SORT_BITS, scratch);
+    if (!r) r = tb_lbvh_record_build(&s->build, list, &w->diag, &build);
+    *count_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &counting);
+    *write_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &writing);
+    return r;
+}
+
+/* ---- the lbvh broadphase: the search every step, never skipped ---------------------------- */
+
+static tb_result lbvh_create(tb_world* w)
+{
+    tb_lbvh_search* s = NULL;
+    tb_result r = tb_lbvh_search_create(w, &s);
+    w->broadphase_state = s;
+    return r;
+}
+
+static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
+{
+    return tb_lbvh_search_reserve(w, w->broadphase_state, capacity);
+}
+
+static tb_result lbvh_record(tb_world* w, tb_pass_list* list)
+{
+    tb_gpu_ptr slots = tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr none = { 0 };
+    tb_pass count_pass, write_pass;
+    tb_result r = tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &count_pass,
+                                        &write_pass);
+    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
+    return r;
+}
+
+static void lbvh_destroy(tb_world* w)
+{
+    tb_lbvh_search_destroy(w, w->broadphase_state);
+    w->broadphase_state = NULL;
+}
+
+const tb_broadphase_ops tb_broadphase_lbvh = {
+    "lbvh", "broadphase/lbvh", lbvh_create, lbvh_reserve, lbvh_record, lbvh_destroy,
+};
