@@ -302,7 +302,7 @@ static void test_stats(void** state)
     char broadphase[64];
     snprintf(broadphase, sizeof broadphase, "broadphase/%s", st.broadphase);
     const char* order[] = { "step/begin", "broadphase/world_aabb", broadphase,
-                            "narrowphase/contacts", "solver/colour", "solver/prepare",
+                            "broadphase/pairs", "narrowphase/contacts", "solver/colour", "solver/prepare",
                             "integrate/apply_forces", "solver/solve", "integrate/integrate",
                             "step/end" };
     int last = -1;

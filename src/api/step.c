@@ -79,12 +79,16 @@ static void end_stage(builder* b, const char* name)
 
 /* ---- stages ---------------------------------------------------------------------------- */
 
-/* The world's broadphase (src/broadphase): the stage broadphase/<name>. */
+/* The world's broadphase (src/broadphase): the stage broadphase/<name>, what it builds to
+ * search in; then broadphase/pairs, its search run by the shared pair output. */
 static void broadphase_stage(builder* b)
 {
     tb_world* w = b->w;
-    if (!b->r) b->r = w->broadphase->record(w, &b->list);
+    tb_broadphase_search search = { .n = 0 };
+    if (!b->r) b->r = w->broadphase->record(w, &b->list, &search);
     end_stage(b, w->broadphase->stage);
+    if (!b->r) b->r = tb_broadphase_record_pair_output(w, &b->list, &search);
+    end_stage(b, "broadphase/pairs");
 }
 
 /* Manifolds of every pair, then the points of the touching hull pairs (see contacts.comp),

@@ -85,9 +85,8 @@ tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline
     return tb_pass_list_add(list, &w->diag, &pass);
 }
 
-tb_result tb_broadphase_record_pair_outputs(tb_world* w, tb_pass_list* list,
-                                            const tb_pass* count_passes,
-                                            const tb_pass* write_passes, uint32_t n)
+tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
+                                           const tb_broadphase_search* search)
 {
     tb_sim* sim = &w->sim;
     tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
@@ -96,18 +95,14 @@ tb_result tb_broadphase_record_pair_outputs(tb_world* w, tb_pass_list* list,
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
     tb_pass check = tb_pass_with_args(w->pair_check, TB_DISPATCH_FIXED, VK_NULL_HANDLE, 0, 0, 0, 0);
     tb_result r = TB_OK;
-    for (uint32_t i = 0; i < n && !r; i++) r = tb_pass_list_add(list, &w->diag, &count_passes[i]);
+    for (uint32_t i = 0; i < search->n && !r; i++)
+        r = tb_pass_list_add(list, &w->diag, &search->counts[i]);
     if (!r) r = tb_prims_scan(&w->prims, list, counts, counts, slots, sim->body_capacity, total,
                               scratch);
     if (!r) r = tb_pass_list_add(list, &w->diag, &check);
-    for (uint32_t i = 0; i < n && !r; i++) r = tb_pass_list_add(list, &w->diag, &write_passes[i]);
+    for (uint32_t i = 0; i < search->n && !r; i++)
+        r = tb_pass_list_add(list, &w->diag, &search->writes[i]);
     return r;
-}
-
-tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
-                                           const tb_pass* count_pass, const tb_pass* write_pass)
-{
-    return tb_broadphase_record_pair_outputs(w, list, count_pass, write_pass, 1);
 }
 
 void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address)

@@ -12,14 +12,16 @@
  *   so a pair keeps its orientation (and its normal's sign) from step to step;
  * - counters.state.z the number of pairs; on overflow the step is abandoned through
  *   broadphase/pair_check (TB_ABORT_PAIRS) and the host grows the pair buffers.
- * The usual way there is two passes over the same search (glsl/broadphase/pairs.glsl):
- * count each finder's pairs, scan the counts into offsets, check the capacity, write
- * (tb_broadphase_record_pair_output). Pairs are then deterministic: in finder order.
+ * The way there is two passes over the same search (glsl/broadphase/pairs.glsl): count
+ * each finder's pairs, scan the counts into offsets, check the capacity, write. Pairs are
+ * then deterministic: in finder order.
  *
  * Each broadphase is a tb_broadphase_ops: it owns its kernels and buffers (device
  * addresses through push constants, tb_gpu_broadphase_push, so none needs a binding of the
  * world's set), grows them with the body capacity, and records its passes as the stage
- * "broadphase/<name>".
+ * "broadphase/<name>" (what it builds to search in: sorted keys, a tree, ...); it hands
+ * its search's count and write passes to the step, which records the pair output around
+ * them as the stage "broadphase/pairs", so the stats tell building from searching.
  */
 #ifndef TB_BROADPHASE_H
 #define TB_BROADPHASE_H
@@ -31,6 +33,15 @@
 
 typedef struct tb_world tb_world;
 
+/// A broadphase's pair search as the pair output runs it: its count and write passes, one
+/// of each per search (several when each step runs one of several, as isap does).
+#define TB_BROADPHASE_MAX_SEARCHES 2
+typedef struct tb_broadphase_search {
+    tb_pass counts[TB_BROADPHASE_MAX_SEARCHES];
+    tb_pass writes[TB_BROADPHASE_MAX_SEARCHES];
+    uint32_t n;
+} tb_broadphase_search;
+
 typedef struct tb_broadphase_ops {
     const char* name;                 ///< "grid", "sap", "lbvh" or "isap"
     const char* stage;                ///< its stage's name: "broadphase/<name>"
@@ -39,8 +50,9 @@ typedef struct tb_broadphase_ops {
     tb_result (*create)(tb_world* w);
     /// The body capacity grew to `capacity` (also called at creation after create).
     tb_result (*reserve)(tb_world* w, uint32_t capacity);
-    /// Append the broadphase's passes (world_aabb has run; the pair output follows).
-    tb_result (*record)(tb_world* w, tb_pass_list* list);
+    /// Append the broadphase's passes (world_aabb has run) and give its search's passes
+    /// (the step records the pair output around them).
+    tb_result (*record)(tb_world* w, tb_pass_list* list, tb_broadphase_search* search);
     void (*destroy)(tb_world* w);
 } tb_broadphase_ops;
 
@@ -69,17 +81,10 @@ tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline
                             tb_dispatch_rule rule, uint32_t groups, tb_gpu_ptr indirect,
                             const tb_gpu_broadphase_push* push);
 
-/// The pair output of a two-pass search: `count_pass` (which must write every slot's
-/// body_pair_count), the scan of the counts into offsets, pair_check, then `write_pass`
-/// (which writes the pairs and body_pairs of every slot).
+/// The pair output of the searches: every count pass, the scan of the counts into offsets,
+/// pair_check, then every write pass (each step runs one search; the others skip).
 tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
-                                           const tb_pass* count_pass, const tb_pass* write_pass);
-
-/// The same with `n` searches of which each step runs one (the others skip on the GPU): all
-/// count passes, the scan and check, all write passes.
-tb_result tb_broadphase_record_pair_outputs(tb_world* w, tb_pass_list* list,
-                                            const tb_pass* count_passes,
-                                            const tb_pass* write_passes, uint32_t n);
+                                           const tb_broadphase_search* search);
 
 /// A device address as the (low, high) pair the shaders take.
 void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address);

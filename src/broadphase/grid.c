@@ -42,7 +42,7 @@ static tb_result grid_reserve(tb_world* w, uint32_t capacity)
     return TB_OK;
 }
 
-static tb_result grid_record(tb_world* w, tb_pass_list* list)
+static tb_result grid_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
 {
     grid_state* g = w->broadphase_state;
     tb_sim* sim = &w->sim;
@@ -60,9 +60,9 @@ static tb_result grid_record(tb_world* w, tb_pass_list* list)
                                  tb_gpu_ptr_of(&sim->body[TB_SIM_LARGE_LIST], 0), entries,
                                  sim->body_capacity, large, scratch);
     if (!r) r = tb_broadphase_add(w, list, g->ranges, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass count_pass = tb_broadphase_pass(g->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass write_pass = tb_broadphase_pass(g->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
-    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
+    search->counts[0] = tb_broadphase_pass(g->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
+    search->writes[0] = tb_broadphase_pass(g->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
+    search->n = 1;
     return r;
 }
 

@@ -8,8 +8,8 @@
  *
  * Passes: keys (per body) -> 3 sorts (tb_prims_sort, 32-bit keys) -> ranks (orders and
  * places into this step's half) -> measure (moves) -> decide -> the LBVH's build (skipped
- * in incremental steps) -> pair count (the incremental one or the LBVH's), scan,
- * pair_check, pair write (tb_broadphase_record_pair_outputs).
+ * in incremental steps); then the step's pair output runs both searches' count and write
+ * passes (the incremental one or the LBVH's does the work).
  *
  * What a step keeps for the next (orders, places, boxes, a header) lives in the half of its
  * parity, and last step's pairs are last step's half of the pair array: a step that is
@@ -122,26 +122,25 @@ static tb_result record_sorts(tb_world* w, const tb_isap_state* s, tb_pass_list*
     return r;
 }
 
-static tb_result isap_record(tb_world* w, tb_pass_list* list)
+static tb_result isap_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
 {
     tb_isap_state* s = w->broadphase_state;
     tb_gpu_ptr none = { 0 };
-    VkDeviceSize search = TB_ISAP_CONTROL_OFFSET + offsetof(tb_gpu_isap_control, search);
-    tb_gpu_ptr incremental = tb_gpu_ptr_of(&s->state, search);
-    tb_gpu_ptr scratch_slots = tb_gpu_ptr_of(&s->state, search + 4);
+    VkDeviceSize choice = TB_ISAP_CONTROL_OFFSET + offsetof(tb_gpu_isap_control, search);
+    tb_gpu_ptr incremental = tb_gpu_ptr_of(&s->state, choice);
+    tb_gpu_ptr scratch_slots = tb_gpu_ptr_of(&s->state, choice + 4);
     tb_gpu_broadphase_push count = isap_push(s, TB_BROADPHASE_COUNT);
     tb_gpu_broadphase_push write = isap_push(s, TB_BROADPHASE_WRITE);
-    tb_pass counts[2], writes[2];
     tb_result r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = record_sorts(w, s, list);
     if (!r) r = tb_broadphase_add(w, list, s->ranks, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = tb_broadphase_add(w, list, s->measure, TB_DISPATCH_PER_BODY, 0, none, &count);
     if (!r) r = tb_broadphase_add(w, list, s->decide, TB_DISPATCH_FIXED, 1, none, &count);
     if (!r) r = tb_lbvh_search_record(w, s->scratch_search, list, scratch_slots, incremental,
-                                      &counts[1], &writes[1]);
-    counts[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
-    writes[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
-    if (!r) r = tb_broadphase_record_pair_outputs(w, list, counts, writes, 2);
+                                      &search->counts[1], &search->writes[1]);
+    search->counts[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &count);
+    search->writes[0] = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &write);
+    search->n = 2;
     return r;
 }
 

@@ -6,7 +6,7 @@
  *                    than the scene of centres) and dead slots get keys after every code
  *   sort             (key, slot) by 31 bits: leaves, then large bodies, then dead slots
  *   build            Karras' hierarchy, then the bottom-up refit (gpu/lbvh.h)
- *   lbvh_pairs       count, scan, check, write (tb_broadphase_record_pair_output): each
+ *   lbvh_pairs       the search (the step's pair output runs it to count, then write): each
  *                    leaf walks the leaves after it, each dynamic body the large ones
  *
  * Large statics stay out of the tree so a plane cannot make every node above it infinite;
@@ -170,15 +170,13 @@ static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
     return tb_lbvh_search_reserve(w, w->broadphase_state, capacity);
 }
 
-static tb_result lbvh_record(tb_world* w, tb_pass_list* list)
+static tb_result lbvh_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
 {
     tb_gpu_ptr slots = tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
     tb_gpu_ptr none = { 0 };
-    tb_pass count_pass, write_pass;
-    tb_result r = tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &count_pass,
-                                        &write_pass);
-    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
-    return r;
+    search->n = 1;
+    return tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &search->counts[0],
+                                 &search->writes[0]);
 }
 
 static void lbvh_destroy(tb_world* w)

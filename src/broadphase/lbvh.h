@@ -14,7 +14,7 @@ tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capaci
 void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s);
 
 /// Append the build (bounds, keys, sort, hierarchy, refit) and give the pair search's count
-/// and write passes for tb_broadphase_record_pair_outputs. `count`: the uint holding the
+/// and write passes for the pair output (tb_broadphase_search). `count`: the uint holding the
 /// body slots to sort (0 sorts nothing). `skip` (address 0: never): a uint that, when
 /// nonzero, makes every pass do nothing, the count and write passes included, so another
 /// search can write the pair output in that step.

@@ -111,7 +111,7 @@ static tb_gpu_broadphase_push push_of(const sap_state* s, uint32_t mode)
     return push;
 }
 
-static tb_result sap_record(tb_world* w, tb_pass_list* list)
+static tb_result sap_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
 {
     sap_state* s = w->broadphase_state;
     tb_sim* sim = &w->sim;
@@ -125,9 +125,9 @@ static tb_result sap_record(tb_world* w, tb_pass_list* list)
     if (!r) r = tb_prims_sort(&w->prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
                               buffer_ptr(s, TB_SAP_ORDER, 0), slots, cap, 32, scratch);
     if (!r) r = tb_broadphase_add(w, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass count_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &count);
-    tb_pass write_pass = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &write);
-    if (!r) r = tb_broadphase_record_pair_output(w, list, &count_pass, &write_pass);
+    search->counts[0] = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &count);
+    search->writes[0] = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &write);
+    search->n = 1;
     return r;
 }
 

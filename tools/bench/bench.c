@@ -405,7 +405,7 @@ static int append_csv(const char* path, const report* r)
         fprintf(f, "%s%s=%.6f", i ? ";" : "", r->s->stage_names[i], r->sum->stage_median[i]);
     fputs("\",\"", f);
     for (uint32_t i = 0; i < r->checks->count; i++)
-        fprintf(f, "%s%s=%.6g", i ? ";" : "", r->checks->items[i].key, r->checks->items[i].value);
+        fprintf(f, "%s%s=%.10g", i ? ";" : "", r->checks->items[i].key, r->checks->items[i].value);
     fprintf(f, "\",%s\n", r->broadphase);
     int ok = !ferror(f);
     if (fclose(f) != 0) ok = 0;
