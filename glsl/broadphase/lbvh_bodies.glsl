@@ -1,6 +1,7 @@
 // The lbvh broadphase's view of the bodies (src/broadphase/lbvh.c): which bodies the tree
 // holds, their centres' bounds and Morton codes. Needs world.glsl and the push constants
-// (tb_gpu_broadphase_push): address[0] keys | values, [1] bounds | nodes, [2] links | skip.
+// (tb_gpu_broadphase_push): address[0] keys | values, [1] bounds | nodes, [2] links | skip,
+// [3] the pair search's cache of partners.
 #ifndef TB_LBVH_BODIES_GLSL
 #define TB_LBVH_BODIES_GLSL
 
@@ -15,6 +16,7 @@ LbvhUints lbvh_values() { return LbvhUints(push.address[0].zw); }
 LbvhBounds lbvh_bounds() { return LbvhBounds(push.address[1].xy); }
 LbvhNodes lbvh_nodes() { return LbvhNodes(push.address[1].zw); }
 LbvhUints lbvh_links() { return LbvhUints(push.address[2].xy); }
+LbvhUints lbvh_cache() { return LbvhUints(push.address[3].xy); }
 uint lbvh_capacity() { return push.args.y; }
 
 // Nothing to do: the step was abandoned, or the search runs inside another broadphase that

@@ -6,14 +6,39 @@
 // found once, by its earlier leaf, and the walk needs no stack; a dynamic body then tests
 // every large static body (the run of TB_LBVH_KEY_LARGE keys after the leaves). Pairs are
 // stored as (lower slot, higher slot) whoever finds them. Large and dead entries find none.
-// The count pass also clears the scene bounds for the next step (lbvh_bounds).
+// The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry; the write
+// pass writes an entry that found no more from them instead of walking again (the walk is
+// most of the search). The count pass also clears the scene bounds for the next step.
 #include "world.glsl"
 #include "pairs.glsl"
 #include "lbvh_bodies.glsl"
 
+uint entry;   // this thread's sorted entry
+
 void report(uint i, uint j)
 {
+    if (!bp_writing() && bp_found < TB_LBVH_CACHED_PAIRS)
+        lbvh_cache().v[bp_found * lbvh_capacity() + entry] = j;
     bp_report(min(i, j), max(i, j));
+}
+
+// Pairs body i found in the counting pass: its offset to the next slot's after the scan.
+uint pairs_counted(uint i, uint slots)
+{
+    uint next = i + 1u < slots ? body_pair_count[i + 1u] : counters.state.z;
+    return next - body_pair_count[i];
+}
+
+// The write pass of an entry that found few pairs: from the cache, in the walk's order.
+bool write_cached(uint i, uint slots)
+{
+    uint found = pairs_counted(i, slots);
+    if (found > TB_LBVH_CACHED_PAIRS) return false;
+    for (uint k = 0u; k < found; k++) {
+        uint j = lbvh_cache().v[k * lbvh_capacity() + entry];
+        bp_report(min(i, j), max(i, j));
+    }
+    return true;
 }
 
 void search_tree(uint i, bool i_dynamic, tb_gpu_lbvh_node own, float margin)
@@ -56,8 +81,9 @@ void main()
     if (s == 0u && !bp_writing()) clear_bounds();
     uint leaves = lbvh_links().v[lbvh_leaf_count_index(lbvh_capacity())];
     uint i = lbvh_values().v[s];
+    entry = s;
     bp_begin(i);
-    if (s < leaves) {
+    if (s < leaves && !(bp_writing() && write_cached(i, count))) {
         bool dynamic = body_is(i, TB_BODY_FLAG_DYNAMIC);
         tb_gpu_lbvh_node own = lbvh_nodes().node[lbvh_capacity() + s];
         search_tree(i, dynamic, own, params.contact.x);

@@ -247,6 +247,10 @@ TB_STRUCT(tb_gpu_lbvh_bounds) {
     TB_UVEC4 hi;              /* xyz ordered bits of the largest centre, w unused */
     TB_UVEC4 lo;              /* xyz inverted ordered bits of the smallest centre, w unused */
 };
+/* Partners the lbvh broadphase's counting walk keeps per entry (uint[CACHED * capacity],
+ * partner k of entry s at k * capacity + s): the writing pass copies an entry that found
+ * no more than this from there instead of walking the tree again. */
+#define TB_LBVH_CACHED_PAIRS    16
 /* Most workgroups of broadphase/lbvh_bounds (a grid-stride loop covers the rest). */
 #define TB_LBVH_BOUNDS_GROUPS   1024
 

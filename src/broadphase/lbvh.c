@@ -29,6 +29,7 @@ struct tb_lbvh_search {
     tb_lbvh_kernels build;
     tb_buffer scene;                  /* tb_gpu_lbvh_bounds */
     tb_buffer keys_buf, values, nodes, links;
+    tb_buffer cache;                  /* partners the counting walk keeps (lbvh_pairs) */
     uint32_t capacity;
 };
 typedef tb_lbvh_search lbvh_state;
@@ -39,6 +40,7 @@ static void free_arrays(tb_world* w, lbvh_state* s)
     tb_buffer_destroy(&w->memory, &s->values);
     tb_buffer_destroy(&w->memory, &s->nodes);
     tb_buffer_destroy(&w->memory, &s->links);
+    tb_buffer_destroy(&w->memory, &s->cache);
     s->capacity = 0;
 }
 
@@ -90,6 +92,7 @@ tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capaci
     if (!r) r = tb_buffer_create(&w->memory, per_body, USAGE, 0, &s->values);
     if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_node_bytes(capacity), USAGE, 0, &s->nodes);
     if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_link_bytes(capacity), USAGE, 0, &s->links);
+    if (!r) r = tb_buffer_create(&w->memory, per_body * TB_LBVH_CACHED_PAIRS, USAGE, 0, &s->cache);
     if (r) free_arrays(w, s);
     else s->capacity = capacity;
     return r;
@@ -110,6 +113,7 @@ static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode, tb_g
     tb_broadphase_put_address(&push.address[1], 1, s->nodes.address);
     tb_broadphase_put_address(&push.address[2], 0, s->links.address);
     tb_broadphase_put_address(&push.address[2], 1, skip.address);
+    tb_broadphase_put_address(&push.address[3], 0, s->cache.address);
     return push;
 }
 
