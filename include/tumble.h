@@ -83,7 +83,7 @@ typedef void tb_log_fn(void* user, tb_log_level level, const char* message);
 /// README's performance section).
 typedef enum tb_broadphase {
     /// The TUMBLE_BROADPHASE environment variable ("grid", "sap", "lbvh" or "isap") when it
-    /// is set, else the library's choice for most scenes.
+    /// is set, else the library's choice for most scenes (now the LBVH).
     TB_BROADPHASE_DEFAULT = 0,
     /// Uniform grid of cells as wide as the largest dynamic body: bodies of similar size.
     TB_BROADPHASE_GRID = 1,
