@@ -152,6 +152,19 @@ static void random_bodies(tb_world* w, th_rng* rng, uint32_t n, float extent, fl
     }
 }
 
+/* Each dynamic body of `ids` gets linear and angular velocities up to `speed` per axis. */
+static void random_velocities(tb_world* w, th_rng* rng, const tb_body_id* ids, uint32_t n,
+                              float speed)
+{
+    for (uint32_t i = 0; i < n; i++) {
+        tb_vec3 v = th_v3(th_rng_range(rng, -speed, speed), th_rng_range(rng, -speed, speed),
+                          th_rng_range(rng, -speed, speed));
+        tb_body_type t;
+        th_assert_ok(tb_body_get_type(w, ids[i], &t));
+        if (t == TB_BODY_DYNAMIC) th_assert_ok(tb_body_set_velocity(w, ids[i], v, v));
+    }
+}
+
 static void test_uniform(void** state)
 {
     tb_world* w = zero_gravity_world(state);
@@ -273,13 +286,7 @@ static void test_moving_over_many_steps(void** state)
     random_bodies(w, &rng, 700, 4.0f, 0.1f, 0.5f, 0.05f);
     tb_body_id ids[1000];
     uint32_t n = tb_world_body_ids(w, ids, 1000);
-    for (uint32_t i = 0; i < n; i++) {
-        tb_vec3 v = th_v3(th_rng_range(&rng, -3, 3), th_rng_range(&rng, -3, 3),
-                          th_rng_range(&rng, -3, 3));
-        tb_body_type t;
-        th_assert_ok(tb_body_get_type(w, ids[i], &t));
-        if (t == TB_BODY_DYNAMIC) th_assert_ok(tb_body_set_velocity(w, ids[i], v, v));
-    }
+    random_velocities(w, &rng, ids, n, 3.0f);
     for (int step = 0; step < 24; step++) {
         if (step == 8)
             for (uint32_t i = 0; i < n; i += 5) th_assert_ok(tb_body_destroy(w, ids[i]));
@@ -316,13 +323,7 @@ static void test_slow_drift(void** state)
     random_bodies(w, &rng, 500, 2.0f, 0.1f, 0.3f, 0.05f);
     tb_body_id ids[600];
     uint32_t n = tb_world_body_ids(w, ids, 600);
-    for (uint32_t i = 0; i < n; i++) {
-        tb_vec3 v = th_v3(th_rng_range(&rng, -0.6f, 0.6f), th_rng_range(&rng, -0.6f, 0.6f),
-                          th_rng_range(&rng, -0.6f, 0.6f));
-        tb_body_type t;
-        th_assert_ok(tb_body_get_type(w, ids[i], &t));
-        if (t == TB_BODY_DYNAMIC) th_assert_ok(tb_body_set_velocity(w, ids[i], v, v));
-    }
+    random_velocities(w, &rng, ids, n, 0.6f);
     for (int step = 0; step < 60; step++) expect_brute_force_pairs(w);
     if (kind_of(state) == TB_BROADPHASE_ISAP) {
         tb_gpu_uvec4 runs = isap_stats(w);

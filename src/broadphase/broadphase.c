@@ -58,9 +58,15 @@ tb_result tb_broadphase_shared_create(tb_world* w)
                               &w->pair_check);
 }
 
+void tb_broadphase_destroy_pipelines(tb_world* w, const VkPipeline* pipelines, size_t count)
+{
+    for (size_t i = 0; i < count; i++)
+        if (pipelines[i]) vkDestroyPipeline(w->gpu.device, pipelines[i], NULL);
+}
+
 void tb_broadphase_shared_destroy(tb_world* w)
 {
-    if (w->pair_check) vkDestroyPipeline(w->gpu.device, w->pair_check, NULL);
+    tb_broadphase_destroy_pipelines(w, &w->pair_check, 1);
     w->pair_check = VK_NULL_HANDLE;
 }
 

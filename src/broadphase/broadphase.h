@@ -67,6 +67,9 @@ const tb_broadphase_ops* tb_broadphase_ops_of(tb_broadphase kind);
 /// Fails with a message when TUMBLE_BROADPHASE names none.
 tb_result tb_broadphase_resolve(tb_diag* diag, tb_broadphase asked, tb_broadphase* out);
 
+/// Destroy the pipelines a broadphase made (null ones are skipped).
+void tb_broadphase_destroy_pipelines(tb_world* w, const VkPipeline* pipelines, size_t count);
+
 /// Shared kernels of the pair output (broadphase/pair_check).
 tb_result tb_broadphase_shared_create(tb_world* w);
 void tb_broadphase_shared_destroy(tb_world* w);

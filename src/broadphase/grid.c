@@ -17,8 +17,7 @@ static void grid_destroy(tb_world* w)
     grid_state* g = w->broadphase_state;
     if (!g) return;
     VkPipeline all[] = { g->assign, g->ranges, g->pairs };
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
-        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
     free(g);
     w->broadphase_state = NULL;
 }

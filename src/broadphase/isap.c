@@ -23,6 +23,8 @@
 #include "api/world.h"
 
 #define CONTROL_BYTES 256   /* the control, rounded up */
+/* C99's static assertion: the array size is negative unless the control fits its room. */
+typedef char isap_control_fits[sizeof(tb_gpu_isap_control) <= CONTROL_BYTES ? 1 : -1];
 
 /* Bytes of one per-axis array: 3 axes of 2 endpoints per body slot. */
 static VkDeviceSize axis_bytes(uint32_t capacity)
@@ -44,8 +46,7 @@ static void isap_destroy(tb_world* w)
     tb_isap_state* s = w->broadphase_state;
     if (!s) return;
     VkPipeline all[] = { s->keys, s->ranks, s->measure, s->decide, s->pairs };
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
-        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
     tb_buffer_destroy(&w->memory, &s->state);
     tb_buffer_destroy(&w->memory, &s->scratch);
     tb_lbvh_search_destroy(w, s->scratch_search);
@@ -55,7 +56,6 @@ static void isap_destroy(tb_world* w)
 
 static tb_result isap_create(tb_world* w)
 {
-    _Static_assert(sizeof(tb_gpu_isap_control) <= CONTROL_BYTES, "control fits its room");
     tb_isap_state* s = calloc(1, sizeof *s);
     if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     w->broadphase_state = s;

@@ -37,8 +37,7 @@ static void sap_destroy(tb_world* w)
     sap_state* s = w->broadphase_state;
     if (!s) return;
     VkPipeline all[] = { s->keys, s->gather, s->sweep };
-    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
-        if (all[i]) vkDestroyPipeline(w->gpu.device, all[i], NULL);
+    tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
     release_buffers(w, s);
     free(s);
     w->broadphase_state = NULL;
