@@ -34,6 +34,7 @@ typedef struct fixture {
     tb_body_id* ids;          ///< ids of the bodies, in slot order
     tb_buffer counters, pairs, manifolds, constraints, colour_list, colour_work, claim, solver_bodies;
     uint32_t parity;              /* the half reset_counters chose: this step's manifolds */
+    tb_buffer tail_scratch;       /* device-local compaction scratch of the tail's list */
 } fixture;
 
 static tb_buffer host_buffer(tb_world* w, VkDeviceSize bytes, VkBufferUsageFlags extra)
@@ -68,6 +69,9 @@ static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, 
     f->colour_work = host_buffer(w, 2 * cap * sizeof(uint32_t), 0);
     f->claim = host_buffer(w, bodies * sizeof(uint32_t), 0);
     f->solver_bodies = host_buffer(w, bodies * sizeof(tb_gpu_solver_body), 0);
+    th_assert_ok(tb_buffer_create(&w->memory, tb_prims_compact_scratch(&w->prims, f->capacity),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                                  0, &f->tail_scratch));
     memset(f->claim.mapped, 0xff, bodies * sizeof(uint32_t));
     tb_pipelines* p = &w->pipelines;
     tb_pipelines_bind(p, TB_BIND_COUNTERS, f->counters.buffer);
@@ -99,7 +103,8 @@ static void fixture_destroy(fixture* f)
     tb_world* w = f->w;
     tb_solver_destroy(&f->solver);
     tb_buffer* all[] = { &f->counters, &f->pairs, &f->manifolds, &f->constraints,
-                         &f->colour_list, &f->colour_work, &f->claim, &f->solver_bodies };
+                         &f->colour_list, &f->colour_work, &f->claim, &f->solver_bodies,
+                         &f->tail_scratch };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) tb_buffer_destroy(&w->memory, all[i]);
     free(f->ids);
     th_world_destroy(w);
@@ -108,6 +113,18 @@ static void fixture_destroy(fixture* f)
 static tb_gpu_counters* counters_of(fixture* f) { return f->counters.mapped; }
 static tb_gpu_uvec4* pairs_of(fixture* f) { return f->pairs.mapped; }
 static tb_gpu_manifold* manifolds_of(fixture* f) { return f->manifolds.mapped; }
+
+/* The list of the constraints left to the tail, as the step records it after 64 rounds. */
+static void record_tail_list(fixture* f, tb_pass_list* list)
+{
+    tb_solver_tail tail = {
+        .prims = &f->w->prims, .work = tb_gpu_ptr_of(&f->colour_work, 0),
+        .pair_count = tb_gpu_ptr_of(&f->counters, offsetof(tb_gpu_counters, state) + 8),
+        .list_count = tb_gpu_ptr_of(&f->counters, offsetof(tb_gpu_counters, colouring) + 8),
+        .scratch = tb_gpu_ptr_of(&f->tail_scratch, 0), .pair_capacity = f->capacity,
+    };
+    th_assert_ok(tb_solver_record_tail_list(&f->solver, list, f->counters.buffer, &tail));
+}
 static uint32_t* colour_list_of(fixture* f) { return f->colour_list.mapped; }
 
 /* What step_begin and the broadphase leave: counters zero but the parity, the pair count and
@@ -660,6 +677,7 @@ static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t ro
     tb_pass_list list = { 0 };
     VkBuffer counters = f->counters.buffer;
     th_assert_ok(tb_solver_record_colouring(&f->solver, &list, counters, rounds, TB_SOLVER_SUB_ROUNDS));
+    if (rounds == TB_MAX_COLOURS) record_tail_list(f, &list);
     th_assert_ok(tb_solver_record_prepare(&f->solver, &list, counters));
     th_assert_ok(tb_pass_list_add(&list, &f->w->diag, &forces));
     th_assert_ok(tb_solver_record_solve(&f->solver, &list, counters, rounds, substeps, iterations));
@@ -937,6 +955,42 @@ static void test_solve_tail_and_abort(void** state)
     }
 }
 
+/* A hub: 70 balls resting on one dynamic plate that rests on the ground. The plate is in 71
+ * constraints, so 64 colours leave 7 to the tail; each ball is held by its one constraint
+ * only, so every ball keeps still only if the tail solved its constraint. */
+static void test_tail_holds_every_ball(void** state)
+{
+    (void)state;
+    enum { BALLS = 70 };
+    fixture f;
+    tb_world* w = th_world_create(NULL);
+    tb_shape_id ball = th_sphere(w, 0.05f);
+    tb_body_def defs[BALLS + 2];
+    defs[0] = th_static_def(th_box(w, th_v3(5, 0.5f, 5)), th_v3(0, -0.5f, 0));
+    defs[1] = th_dynamic_def(th_box(w, th_v3(1, 0.05f, 1)), th_v3(0, 0.05f, 0));
+    for (int k = 0; k < BALLS; k++)
+        defs[k + 2] = th_dynamic_def(ball, th_v3(-0.9f + 1.8f * (k % 10) / 9, 0.15f,
+                                                 -0.9f + 1.8f * (k / 10) / 6));
+    fixture_init_defs(&f, w, defs, BALLS + 2, 1, BALLS + 1);
+    tb_gpu_vec4 corners[4] = { { -1, 0, -1, 0 }, { 1, 0, -1, 0 }, { 1, 0, 1, 0 }, { -1, 0, 1, 0 } };
+    set_contact(&f, 0, 0, 0, 1, th_v3(0, 1, 0), 0.5f, 0, 4, corners);
+    for (uint32_t k = 0; k < BALLS; k++) {
+        tb_gpu_vec4 point = { defs[k + 2].position.x, 0.1f, defs[k + 2].position.z, 0 };
+        set_contact(&f, 0, k + 1, 1, k + 2, th_v3(0, 1, 0), 0.5f, 0, 1, &point);
+    }
+    solver_step(&f, BALLS + 1, 0, TB_MAX_COLOURS, SUBSTEPS, 1);
+    const tb_gpu_counters* c = counters_of(&f);
+    assert_int_equal(c->state.x, 0);
+    assert_int_equal(c->solver.y, BALLS + 1 - TB_MAX_COLOURS);
+    assert_int_equal(c->colouring.z, BALLS + 1 - TB_MAX_COLOURS);
+    double g = -tb_world_get_gravity(w).y;
+    for (uint32_t k = 0; k < BALLS; k++) {
+        tb_vec3 v = velocity_of(&f, k + 2);
+        if (fabs(v.y) > 0.05 * g * DT) fail_msg("ball %u falls at %g m/s", k, v.y);
+    }
+    fixture_destroy(&f);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -954,6 +1008,7 @@ int main(void)
         cmocka_unit_test(test_solve_friction),
         cmocka_unit_test(test_solve_stack_deterministic),
         cmocka_unit_test(test_solve_tail_and_abort),
+        cmocka_unit_test(test_tail_holds_every_ball),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -154,7 +154,8 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
                                  counts every constraint here, colour_finish subtracts the
                                  coloured ones), z batches (subgroup-wide), w contact points */
-    TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z w unused */
+    TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z the constraints
+                                 left to solve_tail (listed in work list 0), w unused */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */

@@ -100,11 +100,23 @@ static void narrowphase_stage(builder* b)
     end_stage(b, "narrowphase/contacts");
 }
 
+/* The colouring; when it runs all TB_MAX_COLOURS rounds, also the list of the constraints
+ * it may leave to the solver's tail. */
 static void colour_stage(builder* b)
 {
     tb_world* w = b->w;
-    if (!b->r) b->r = tb_solver_record_colouring(&w->solver, &b->list, w->sim.counters.buffer,
+    tb_sim* sim = &w->sim;
+    if (!b->r) b->r = tb_solver_record_colouring(&w->solver, &b->list, sim->counters.buffer,
                                                  w->colour_rounds, TB_SOLVER_SUB_ROUNDS);
+    tb_solver_tail tail = {
+        .prims = &w->prims, .work = tb_gpu_ptr_of(&sim->pair[TB_SIM_COLOUR_WORK], 0),
+        .pair_count = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, state) + 8),
+        .list_count = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, colouring) + 8),
+        .scratch = tb_gpu_ptr_of(&sim->pair[TB_SIM_TAIL_SCRATCH], 0),
+        .pair_capacity = sim->pair_capacity,
+    };
+    if (!b->r && w->colour_rounds == TB_MAX_COLOURS)
+        b->r = tb_solver_record_tail_list(&w->solver, &b->list, sim->counters.buffer, &tail);
     end_stage(b, "solver/colour");
 }
 

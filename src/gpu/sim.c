@@ -19,6 +19,7 @@ static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
     [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
+    [TB_SIM_TAIL_SCRATCH] = UINT32_MAX,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -42,9 +43,10 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
 
 /* Pairs hold two halves (this step's and the previous one's); manifolds keep last step's in
  * an array of their own. */
-static VkDeviceSize pair_bytes(tb_sim_pair_buffer b, uint32_t capacity)
+static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t capacity)
 {
     switch (b) {
+    case TB_SIM_TAIL_SCRATCH: return tb_prims_compact_scratch(sim->prims, capacity);
     case TB_SIM_PAIRS: return 2 * (VkDeviceSize)capacity * 16;
     case TB_SIM_MANIFOLDS:
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
@@ -63,8 +65,8 @@ uint32_t tb_sim_pair_limit(const tb_sim* sim)
 {
     const tb_gpu* gpu = sim->memory->gpu;
     /* Bound arrays: the pairs' two halves are the largest. Addressed ones: one allocation. */
-    uint64_t by_range = gpu->props.limits.maxStorageBufferRange / pair_bytes(TB_SIM_PAIRS, 1);
-    uint64_t by_allocation = gpu->max_allocation / pair_bytes(TB_SIM_CONSTRAINTS, 1);
+    uint64_t by_range = gpu->props.limits.maxStorageBufferRange / pair_bytes(sim, TB_SIM_PAIRS, 1);
+    uint64_t by_allocation = gpu->max_allocation / pair_bytes(sim, TB_SIM_CONSTRAINTS, 1);
     uint64_t limit = TB_MAX_PAIR_CAPACITY;
     if (by_range < limit) limit = by_range;
     if (by_allocation && by_allocation < limit) limit = by_allocation;
@@ -162,12 +164,12 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
     for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT && !r; b++) {
         /* Both halves of the pairs move to their new places (half h starts at h * capacity);
          * last step's manifolds keep their indices. */
-        VkDeviceSize old = pair_bytes(b, sim->pair_capacity);
-        VkDeviceSize half_old = old / 2, half_new = pair_bytes(b, pairs) / 2;
+        VkDeviceSize old = pair_bytes(sim, b, sim->pair_capacity);
+        VkDeviceSize half_old = old / 2, half_new = pair_bytes(sim, b, pairs) / 2;
         VkBufferCopy halves[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
         VkBufferCopy whole = { 0, 0, old };
         uint32_t n = !old ? 0 : b == TB_SIM_PAIRS ? 2 : b == TB_SIM_PREV_MANIFOLDS ? 1 : 0;
-        r = replace(sim, t, &sim->pair[b], pair_bytes(b, pairs), b == TB_SIM_PAIRS ? halves : &whole,
+        r = replace(sim, t, &sim->pair[b], pair_bytes(sim, b, pairs), b == TB_SIM_PAIRS ? halves : &whole,
                     n, 0, &fresh[b]);
     }
     r = finish(sim, t, sim->pair, fresh, pair_binding, TB_SIM_PAIR_BUFFER_COUNT, r);

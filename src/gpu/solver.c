@@ -16,6 +16,7 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
     { "solver/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_solver, solve) },
     { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
     { "integrate/substep", TB_WORKGROUP_SIZE, offsetof(tb_solver, substep) },
+    { "solver/tail_list", TB_WORKGROUP_SIZE, offsetof(tb_solver, tail_list) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
@@ -97,6 +98,19 @@ tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkB
     }
     tb_pass finish = { .pipeline = s->colour_finish, .rule = TB_DISPATCH_FIXED, .groups = { 1, 1, 1 } };
     return r ? r : add(s, list, &finish);
+}
+
+tb_result tb_solver_record_tail_list(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                     const tb_solver_tail* tail)
+{
+    tb_pass flags = per_pair(s->tail_list, counters, 0, 0, 0);
+    tb_gpu_ptr second = tail->work;
+    second.offset += (VkDeviceSize)tail->pair_capacity * 4;
+    second.address += (VkDeviceSize)tail->pair_capacity * 4;
+    tb_result r = add(s, list, &flags);
+    if (!r) r = tb_prims_compact(tail->prims, list, second, tail->work, tail->pair_count,
+                                 tail->pair_capacity, tail->list_count, tail->scratch);
+    return r;
 }
 
 /* One sweep over the colours (TB_SOLVE_* in push z, the substep in y), and the tail. */

@@ -15,11 +15,22 @@
 #define TB_SOLVER_H
 
 #include "gpu/graph.h"
+#include "gpu/prims.h"
 
 typedef struct tb_solver {
     tb_pipelines* pipelines;
     VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail, substep;
+    VkPipeline tail_list;
 } tb_solver;
+
+/// What listing the tail's constraints needs: the colour work lists (2 x pair capacity
+/// uints), the pair count and where the list's length goes (counters.state.z and
+/// counters.colouring.z), and compaction scratch for the pair capacity.
+typedef struct tb_solver_tail {
+    tb_prims* prims;
+    tb_gpu_ptr work, pair_count, list_count, scratch;
+    uint32_t pair_capacity;
+} tb_solver_tail;
 
 /// Build the solver's pipelines.
 tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines);
@@ -35,6 +46,12 @@ void tb_solver_destroy(tb_solver* s);
 /// colour_finish. `counters` is the buffer bound at TB_BIND_COUNTERS.
 tb_result tb_solver_record_colouring(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
                                      uint32_t rounds, uint32_t sub_rounds);
+
+/// After a colouring of TB_MAX_COLOURS rounds (only then): the constraints it left, in pair
+/// order, for solve_tail: flags (tail_list) into the second work list, compacted into the
+/// first.
+tb_result tb_solver_record_tail_list(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
+                                     const tb_solver_tail* tail);
 
 /// prepare: the constraints' solver data. Before gravity is applied, so restitution sees the
 /// approach speed the body had when the step began (the speed it hit with).
