@@ -9,7 +9,7 @@
 
 /* The library's choice for TB_BROADPHASE_DEFAULT (README, performance): the LBVH was the
  * fastest on every pile of 100k and 1M bodies measured, mixed sizes included, and within
- * 0.05 ms of the grid at 10k; no scene makes it degrade as mixed sizes do the grid and
+ * 0.12 ms of the best at 10k; no scene makes it degrade as mixed sizes do the grid and
  * dense piles the sort and sweep. */
 #define DEFAULT_BROADPHASE TB_BROADPHASE_LBVH
 
