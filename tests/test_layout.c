@@ -101,6 +101,29 @@ static void test_contact_layout(void** state)
     assert_true(TB_MAX_COLOURS <= (1 << (32 - TB_COLOUR_INDEX_BITS)));
 }
 
+/* The broadphases' structs: vec4 members only, so std430 and C agree; push constants fit
+ * the pipeline layout's range. */
+static void test_broadphase_layout(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_gpu_broadphase_push), 80);
+    assert_true(sizeof(tb_gpu_broadphase_push) <= 128);
+    assert_int_equal(sizeof(tb_gpu_lbvh_push), 80);
+    assert_int_equal(sizeof(tb_gpu_lbvh_node), 32);
+    assert_int_equal(offsetof(tb_gpu_lbvh_node, hi), 16);
+    assert_int_equal(sizeof(tb_gpu_lbvh_bounds), 32);
+    assert_int_equal(sizeof(tb_gpu_isap_header), 32);
+    assert_int_equal(sizeof(tb_gpu_isap_control), 4 * 16 + 2 * 32);
+    assert_int_equal(offsetof(tb_gpu_isap_control, header), 64);
+    assert_int_equal(sizeof(tb_gpu_sap_partial), 32);
+    assert_int_equal(sizeof(tb_gpu_sap_header), 16);
+    assert_int_not_equal(TB_BROADPHASE_COUNT, TB_BROADPHASE_WRITE);
+    /* Keys beyond every Morton code and every ordered float key. */
+    assert_true(TB_LBVH_KEY_DEAD < (1u << TB_LBVH_SORT_BITS));
+    assert_true(TB_LBVH_KEY_LARGE >= (1u << TB_LBVH_KEY_BITS));
+    assert_true(TB_SAP_KEY_LARGE > 0xff800000u && TB_ISAP_KEY_LARGE > 0xff800000u);
+}
+
 static void test_spec_ids(void** state)
 {
     (void)state;
@@ -145,6 +168,7 @@ int main(void)
         cmocka_unit_test(test_shape_type_values),
         cmocka_unit_test(test_bindings_distinct),
         cmocka_unit_test(test_contact_layout),
+        cmocka_unit_test(test_broadphase_layout),
         cmocka_unit_test(test_spec_ids),
         cmocka_unit_test(test_misc_constants),
         cmocka_unit_test(test_public_abi_sizes),
