@@ -2,6 +2,7 @@
 #   make            build libtumble.so / libtumble.a (SPIR-V embedded) and the tools
 #   make deps       install missing Debian packages
 #   make test       build and run the tests on lavapipe with the validation layers on
+#   make abi-check  compare libtumble.so with the ABI baseline in abi/ (part of make test)
 #   make run        install, build, run the default scene
 #   make bench SCENE=freefall N=100000 STEPS=200 [BROADPHASE=grid|sap|lbvh|isap]
 #              [FRAMES=dir EVERY=k CONTACTS=1]
@@ -33,7 +34,9 @@ SHADERS    := $(shell find glsl -name '*.comp' | sort)
 SPV        := $(SHADERS:glsl/%.comp=$(BUILD)/spv/%.spv)
 SCENES_SRC := $(wildcard tools/scenes/*.c)
 TEST_SRC   := $(sort $(wildcard tests/test_*.c))
-TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%)
+TEST_CXX   := $(sort $(wildcard tests/test_*.cpp))
+TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%) $(TEST_CXX:tests/%.cpp=$(BUILD)/tests/%)
+CXX        ?= g++
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
@@ -43,7 +46,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean check-exports check-readme
+.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS)
 
@@ -109,6 +112,12 @@ $(BUILD)/tumble-run: tools/run/run.c $(TOOL_DEPS)
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/run/run.c $(TOOL_LINK)
 
+# A C++ translation unit that includes tumble.h: the header must be C++-clean.
+$(BUILD)/tests/%: tests/%.cpp include/tumble.h $(BUILD)/libtumble.a
+	$(call say,CXX,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CXX) -std=c++11 -O2 -Wall -Wextra -Wpedantic -Werror -Iinclude -o $@ $< $(BUILD)/libtumble.a $(LIBS)
+
 $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(call say,LD,$@)
 	@mkdir -p $(dir $@)
@@ -117,7 +126,7 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
-test: deps all $(TEST_BIN) check-exports check-readme
+test: deps all $(TEST_BIN) check-exports check-readme abi-check check-abi-break
 	$(Q)fail=0; pass=0; \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
@@ -127,6 +136,26 @@ test: deps all $(TEST_BIN) check-exports check-readme
 	  done; \
 	done; \
 	echo "$$pass passed, $$fail failed"; [ $$fail -eq 0 ]
+
+# The ABI contract (abi/): libtumble.so compared with abi/libtumble.abi by libabigail's
+# abidiff, on the types of the public headers. Added functions are compatible; any other
+# change (a struct's layout, a signature, a removed function) fails. `make abi-baseline`
+# records a new contract, on purpose only. Needs the library built with debug info (-g).
+ABIDW   ?= abidw
+ABIDIFF ?= abidiff
+abi-check: $(BUILD)/libtumble.so
+	$(call say,CHECK,ABI)
+	$(Q)out=$$($(ABIDIFF) --no-added-syms --headers-dir2 include abi/libtumble.abi $< 2>&1) || { \
+	  echo "$$out"; echo "abi-check: $< breaks the ABI recorded in abi/libtumble.abi"; exit 1; }
+
+abi-baseline: $(BUILD)/libtumble.so
+	$(Q)$(ABIDW) --headers-dir include --no-corpus-path --out-file abi/libtumble.abi $<
+
+# abi-check must fail on an incompatible change: tools/abi-break-check makes one in a
+# temporary copy (a field inserted into tb_world_def) and runs abi-check there.
+check-abi-break: $(BUILD)/libtumble.so
+	$(call say,CHECK,abi-break)
+	$(Q)sh tools/abi-break-check $(BUILD)
 
 # Only tb_* symbols may leave the shared library.
 check-exports: $(BUILD)/libtumble.so
