@@ -333,6 +333,39 @@ static void test_slow_drift(void** state)
     th_world_destroy(w);
 }
 
+/* Every step every dynamic body jumps to a new place in the crowd: last step's orders tell
+ * nothing, the incremental search would scan nearly everything, so isap must search from
+ * scratch each step (the set of bodies never changes: the moves alone decide it). */
+static void test_teleports(void** state)
+{
+    tb_world* w = zero_gravity_world(state);
+    th_rng rng = th_rng_seed(8);
+    random_bodies(w, &rng, 400, 2.0f, 0.1f, 0.3f, 0.1f);
+    tb_body_id ids[400];
+    uint32_t n = tb_world_body_ids(w, ids, 400);
+    expect_brute_force_pairs(w);
+    tb_gpu_uvec4 before = kind_of(state) == TB_BROADPHASE_ISAP ? isap_stats(w) : (tb_gpu_uvec4){ 0 };
+    enum { JUMPS = 8 };
+    for (int step = 0; step < JUMPS; step++) {
+        for (uint32_t i = 0; i < n; i++) {
+            tb_body_type t;
+            th_assert_ok(tb_body_get_type(w, ids[i], &t));
+            if (t != TB_BODY_DYNAMIC) continue;
+            tb_vec3 p = th_v3(th_rng_range(&rng, -2, 2), th_rng_range(&rng, -2, 2),
+                              th_rng_range(&rng, -2, 2));
+            th_assert_ok(tb_body_set_pose(w, ids[i], p, th_rng_quat(&rng)));
+        }
+        expect_brute_force_pairs(w);
+    }
+    if (kind_of(state) == TB_BROADPHASE_ISAP) {
+        tb_gpu_uvec4 after = isap_stats(w);
+        print_message("isap: %u incremental, %u from scratch over %d jumps\n",
+                      after.x - before.x, after.y - before.y, JUMPS);
+        assert_true(after.y - before.y >= JUMPS);
+    }
+    th_world_destroy(w);
+}
+
 static const tb_broadphase kinds[] = {
     TB_BROADPHASE_GRID,
     TB_BROADPHASE_SAP,
@@ -342,8 +375,9 @@ static const tb_broadphase kinds[] = {
 
 #define SCENES(X) X(test_empty_and_single) X(test_uniform) X(test_mixed_sizes) \
     X(test_clusters) X(test_all_in_one_place) X(test_duplicates_and_touching) \
-    X(test_large_statics_and_dead_slots) X(test_moving_over_many_steps) X(test_slow_drift)
-#define SCENE_COUNT 9
+    X(test_large_statics_and_dead_slots) X(test_moving_over_many_steps) X(test_slow_drift) \
+    X(test_teleports)
+#define SCENE_COUNT 10
 
 int main(void)
 {
