@@ -46,7 +46,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break
+.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break check-python
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS)
 
@@ -126,7 +126,7 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
-test: deps all $(TEST_BIN) check-exports check-readme abi-check check-abi-break
+test: deps all $(TEST_BIN) check-exports check-readme abi-check check-abi-break check-python
 	$(Q)fail=0; pass=0; \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
@@ -156,6 +156,13 @@ abi-baseline: $(BUILD)/libtumble.so
 check-abi-break: $(BUILD)/libtumble.so
 	$(call say,CHECK,abi-break)
 	$(Q)sh tools/abi-break-check $(BUILD)
+
+# The Python binding (tools/python) under pytest, on Debian's python3 (numpy, cffi, pytest
+# come from its packages: make deps).
+PYTHON ?= /usr/bin/python3
+check-python: $(BUILD)/libtumble.so
+	$(call say,PYTEST,tools/python)
+	$(Q)env $(TEST_ENV) TUMBLE_LIBRARY=$(abspath $(BUILD))/libtumble.so $(PYTHON) -m pytest -q -p no:cacheprovider tools/python
 
 # Only tb_* symbols may leave the shared library.
 check-exports: $(BUILD)/libtumble.so

@@ -1,0 +1,93 @@
+"""The Python binding on lavapipe (make test sets TUMBLE_DEVICE and TUMBLE_VALIDATION):
+a pile scene driven from Python, a million transforms read into numpy in one call, errors
+as exceptions. Every world must end without a validation message."""
+import os
+import sys
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+import tumble  # noqa: E402
+
+
+@pytest.fixture
+def make_world():
+    worlds = []
+
+    def make(**kwargs):
+        w = tumble.World(**kwargs)
+        worlds.append(w)
+        return w
+
+    yield make
+    for w in worlds:
+        assert w.stats()["validation_messages"] == 0
+        w.close()
+
+
+def container(world, half_width, height):
+    """Floor (top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw]."""
+    hw, hh, t = half_width, height / 2, 0.5
+    for centre, half in [((0, -t, 0), (hw + 2 * t, t, hw + 2 * t)),
+                         ((hw + t, hh, 0), (t, hh, hw + 2 * t)), ((-hw - t, hh, 0), (t, hh, hw + 2 * t)),
+                         ((0, hh, hw + t), (hw, hh, t)), ((0, hh, -hw - t), (hw, hh, t))]:
+        world.add_bodies(world.box(half), np.array([centre]), static=True)
+
+
+def test_pile_settles_in_its_container(make_world):
+    world = make_world(broadphase="lbvh")
+    side, layers = 8, 6                       # 384 bodies, half spheres, half boxes
+    grid = np.stack(np.meshgrid(np.arange(side), np.arange(layers), np.arange(side),
+                                indexing="ij"), axis=-1).reshape(-1, 3).astype(np.float32)
+    rng = np.random.default_rng(1)
+    start = (grid - [side / 2 - 0.5, -0.5, side / 2 - 0.5]) * 1.1 + rng.uniform(-0.03, 0.03, grid.shape)
+    start[:, 1] += 0.5
+    half_width = side * 1.1 / 2
+    container(world, half_width, layers * 1.1 + 3)
+    balls = world.add_bodies(world.sphere(0.5), start[0::2])
+    boxes = world.add_bodies(world.box((0.5, 0.5, 0.5)), start[1::2])
+    world.step(1 / 60, n=240)
+    for bodies in (balls, boxes):
+        p, q = world.transforms(bodies)
+        assert np.all(np.isfinite(p)) and np.all(np.isfinite(q))
+        assert np.all(np.abs(p[:, [0, 2]]) < half_width + 0.05)
+        assert np.all(p[:, 1] > 0.3)           # nothing sank through the floor
+        assert np.allclose(np.linalg.norm(q, axis=1), 1, atol=1e-4)
+    before, _ = world.transforms(boxes)
+    world.step(1 / 60, n=10)
+    after, _ = world.transforms(boxes)
+    moved = np.linalg.norm(after - before, axis=1)
+    assert np.mean(moved < 0.01) > 0.9         # settled: most boxes keep still
+    stats = world.stats()
+    assert stats["bodies"] == 384 + 5 and stats["contacts"] > 0
+    assert stats["broadphase"] == "lbvh"
+
+
+def test_a_million_transforms_in_one_call(make_world):
+    n = 1_000_000
+    world = make_world(gravity=(0, 0, 0), initial_body_capacity=n + 16)
+    side = 100
+    index = np.arange(n)
+    grid = np.stack([index % side, index // side % side, index // (side * side)], axis=1)
+    start = grid.astype(np.float32) * 2.0
+    bodies = world.add_bodies(world.sphere(0.25), start, velocities=np.tile([1.0, 0, 0], (n, 1)))
+    world.step(0.5)
+    positions, rotations = world.transforms(bodies)
+    assert positions.shape == (n, 3) and rotations.shape == (n, 4)
+    assert positions.dtype == np.float32
+    np.testing.assert_allclose(positions, start + [0.5, 0, 0], atol=1e-4)
+    np.testing.assert_allclose(rotations, np.tile([0, 0, 0, 1], (n, 1)), atol=1e-6)
+
+
+def test_errors_are_exceptions(make_world):
+    world = make_world()
+    with pytest.raises(tumble.TumbleError, match="radius") as caught:
+        world.sphere(-1.0)
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    ball = world.sphere(0.5)
+    with pytest.raises(tumble.TumbleError, match="finite"):
+        world.add_bodies(ball, np.array([[0, np.nan, 0]]))
+    assert world.stats()["bodies"] == 0        # all or none: nothing was added
+    with pytest.raises(KeyError):
+        tumble.World(broadphase="octree")
