@@ -180,7 +180,7 @@ static void test_mixed_sizes(void** state)
 {
     tb_world* w = zero_gravity_world(state);
     th_rng rng = th_rng_seed(2);
-    random_bodies(w, &rng, 1500, 10.0f, 0.01f, 10.0f, 0.3f);
+    random_bodies(w, &rng, 800, 10.0f, 0.01f, 10.0f, 0.3f);
     expect_brute_force_pairs(w);
     th_world_destroy(w);
 }
@@ -265,14 +265,14 @@ static void test_all_in_one_place(void** state)
     tb_world* w = zero_gravity_world(state);
     th_rng rng = th_rng_seed(5);
     tb_shape_id box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
-    for (int i = 0; i < 300; i++) {
+    for (int i = 0; i < 200; i++) {
         tb_vec3 p = th_v3(th_rng_range(&rng, -0.01f, 0.01f), th_rng_range(&rng, -0.01f, 0.01f),
                           th_rng_range(&rng, -0.01f, 0.01f));
         tb_body_def d = th_dynamic_def(box, p);
         th_body(w, &d);
     }
     expect_brute_force_pairs(w);
-    assert_int_equal(th_stats(w).pair_count, 300 * 299 / 2);
+    assert_int_equal(th_stats(w).pair_count, 200 * 199 / 2);
     th_world_destroy(w);
 }
 
@@ -324,11 +324,11 @@ static void test_slow_drift(void** state)
     tb_body_id ids[600];
     uint32_t n = tb_world_body_ids(w, ids, 600);
     random_velocities(w, &rng, ids, n, 0.6f);
-    for (int step = 0; step < 60; step++) expect_brute_force_pairs(w);
+    for (int step = 0; step < 40; step++) expect_brute_force_pairs(w);
     if (kind_of(state) == TB_BROADPHASE_ISAP) {
         tb_gpu_uvec4 runs = isap_stats(w);
         print_message("isap: %u incremental, %u from scratch\n", runs.x, runs.y);
-        assert_true(runs.x >= 40);
+        assert_true(runs.x >= 25);
     }
     th_world_destroy(w);
 }
