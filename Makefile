@@ -124,14 +124,22 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -o $@ $< tests/harness.c $(TOOL_LINK) -lcmocka
 
 # Tests run on lavapipe with the validation layers (synchronization validation included);
-# any validation message fails a test. Each binary runs at lavapipe's two subgroup widths.
+# any validation message fails a test. Each binary runs at lavapipe's two subgroup widths,
+# both at once (a test keeps about one core busy); their outputs follow each other.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
+TEST_LOGS := $(BUILD)/test-logs
 test: deps all $(TEST_BIN) check-exports check-readme abi-check check-abi-break check-python
-	$(Q)fail=0; pass=0; \
+	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
-	    printf '  %-8s %s (LP_NATIVE_VECTOR_WIDTH=%s)\n' TEST $$t $$width; \
-	    if env $(TEST_ENV) LP_NATIVE_VECTOR_WIDTH=$$width $$t; then pass=$$((pass+1)); \
+	    log=$(TEST_LOGS)/$$(basename $$t).$$width; \
+	    (env $(TEST_ENV) LP_NATIVE_VECTOR_WIDTH=$$width $$t > $$log.log 2>&1; echo $$? > $$log.rc) & \
+	  done; \
+	  wait; \
+	  for width in 256 128; do \
+	    log=$(TEST_LOGS)/$$(basename $$t).$$width; \
+	    printf '  %-8s %s (LP_NATIVE_VECTOR_WIDTH=%s)\n' TEST $$t $$width; cat $$log.log; \
+	    if [ "$$(cat $$log.rc)" = 0 ]; then pass=$$((pass+1)); \
 	    else fail=$$((fail+1)); echo "FAILED: $$t at width $$width"; fi; \
 	  done; \
 	done; \
