@@ -1,4 +1,5 @@
-/* What every broadphase shares: the choice, the pair output's passes, push constants. */
+/* What every broadphase shares: the choice, the pair output's passes, push constants,
+ * buffers. */
 #include "broadphase/broadphase.h"
 
 #include <stdlib.h>
@@ -98,7 +99,7 @@ tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
                                            const tb_broadphase_search* search)
 {
     tb_sim* sim = &w->sim;
-    tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr slots = tb_broadphase_slots(w);
     tb_gpu_ptr total = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, state) + 8);
     tb_gpu_ptr counts = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_PAIR_COUNT], 0);
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
@@ -114,9 +115,25 @@ tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
     return r;
 }
 
-void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address)
+tb_result tb_broadphase_buffer(tb_world* w, VkDeviceSize bytes, tb_buffer* out)
 {
-    uint32_t lo = (uint32_t)address, hi = (uint32_t)(address >> 32);
-    if (half) { slot->z = lo; slot->w = hi; }
-    else { slot->x = lo; slot->y = hi; }
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                     VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
+    return tb_buffer_create(&w->memory, bytes, usage, 0, out);
+}
+
+tb_result tb_broadphase_clear(tb_world* w, const tb_buffer* buffer)
+{
+    tb_result r = tb_transfer_begin(&w->transfer, 0);
+    if (r) return r;
+    vkCmdFillBuffer(w->transfer.cb, buffer->buffer, 0, VK_WHOLE_SIZE, 0);
+    r = tb_transfer_end(&w->transfer);
+    return r ? r : tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+}
+
+tb_gpu_ptr tb_broadphase_slots(tb_world* w)
+{
+    return tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
 }

@@ -89,7 +89,13 @@ tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline
 tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
                                            const tb_broadphase_search* search);
 
-/// A device address as the (low, high) pair the shaders take.
-void tb_broadphase_put_address(tb_gpu_uvec4* slot, int half, VkDeviceAddress address);
+/// A device-local buffer for a broadphase's kernels: storage, transfers, indirect arguments
+/// (its address goes into tb_gpu_broadphase_push with tb_gpu_addresses).
+tb_result tb_broadphase_buffer(tb_world* w, VkDeviceSize bytes, tb_buffer* out);
+/// Fill a buffer with zeros and wait for it (state that must start empty).
+tb_result tb_broadphase_clear(tb_world* w, const tb_buffer* buffer);
+/// The uint holding this step's body slots (counters.grid.z, written by step/begin): the
+/// count of every per-body sort and scan of a broadphase.
+tb_gpu_ptr tb_broadphase_slots(tb_world* w);
 
 #endif

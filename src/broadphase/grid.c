@@ -1,6 +1,6 @@
 /* The uniform grid broadphase (glsl/broadphase/grid*.comp): each body in the cell of its
- * AABB's centre, sorted by cell hash; a body searches its own and the 26 neighbouring
- * cells. Large static bodies stay out of the grid and are tested by every dynamic body.
+ * AABB's centre, sorted by cell hash; a body searches its own cell and the 13 "forward" of
+ * its 26 neighbours (the other 13 search it). Large static bodies stay out of the grid and are tested by every dynamic body.
  * Its buffers are the grid bindings of the world's set (gpu/sim.c sizes them). */
 #include "broadphase/broadphase.h"
 
@@ -45,7 +45,7 @@ static tb_result grid_record(tb_world* w, tb_pass_list* list, tb_broadphase_sear
 {
     grid_state* g = w->broadphase_state;
     tb_sim* sim = &w->sim;
-    tb_gpu_ptr entries = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr entries = tb_broadphase_slots(w);
     tb_gpu_ptr large = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 4);
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
     tb_gpu_ptr none = { 0 };

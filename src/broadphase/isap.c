@@ -73,21 +73,14 @@ static tb_result isap_create(tb_world* w)
 static tb_result isap_reserve(tb_world* w, uint32_t capacity)
 {
     tb_isap_state* s = w->broadphase_state;
-    VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     tb_buffer_destroy(&w->memory, &s->state);
     tb_buffer_destroy(&w->memory, &s->scratch);
     s->capacity = 0;
     uint32_t endpoints = capacity * 2;
-    tb_result r = tb_buffer_create(&w->memory, state_bytes(capacity), usage, 0, &s->state);
-    if (!r) r = tb_buffer_create(&w->memory, tb_prims_sort_scratch(&w->prims, endpoints), usage,
-                                 0, &s->scratch);
+    tb_result r = tb_broadphase_buffer(w, state_bytes(capacity), &s->state);
+    if (!r) r = tb_broadphase_buffer(w, tb_prims_sort_scratch(&w->prims, endpoints), &s->scratch);
     if (!r) r = tb_lbvh_search_reserve(w, s->scratch_search, capacity);
-    if (!r) r = tb_transfer_begin(&w->transfer, 0);
-    if (r) return r;
-    vkCmdFillBuffer(w->transfer.cb, s->state.buffer, 0, VK_WHOLE_SIZE, 0);
-    r = tb_transfer_end(&w->transfer);
-    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    if (!r) r = tb_broadphase_clear(w, &s->state);
     if (!r) s->capacity = capacity;
     return r;
 }
@@ -96,13 +89,11 @@ static tb_gpu_broadphase_push isap_push(const tb_isap_state* s, uint32_t mode)
 {
     tb_gpu_broadphase_push push = { { mode, s->capacity, 0, 0 }, { { 0 } } };
     VkDeviceAddress base = s->state.address;
-    for (int half = 0; half < 2; half++) {
-        tb_broadphase_put_address(&push.address[0], half, base + order_offset(s->capacity, half));
-        tb_broadphase_put_address(&push.address[1], half, base + place_offset(s->capacity, half));
-        tb_broadphase_put_address(&push.address[2], half, base + box_offset(s->capacity, half));
-    }
-    tb_broadphase_put_address(&push.address[3], 0, base + keys_offset());
-    tb_broadphase_put_address(&push.address[3], 1, base + TB_ISAP_CONTROL_OFFSET);
+    uint32_t c = s->capacity;
+    push.address[0] = tb_gpu_addresses(base + order_offset(c, 0), base + order_offset(c, 1));
+    push.address[1] = tb_gpu_addresses(base + place_offset(c, 0), base + place_offset(c, 1));
+    push.address[2] = tb_gpu_addresses(base + box_offset(c, 0), base + box_offset(c, 1));
+    push.address[3] = tb_gpu_addresses(base + keys_offset(), base + TB_ISAP_CONTROL_OFFSET);
     return push;
 }
 

@@ -21,9 +21,6 @@
 #include "api/world.h"
 #include "gpu/lbvh.h"
 
-#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
-
 struct tb_lbvh_search {
     VkPipeline bounds, keys, pairs;
     tb_lbvh_kernels build;
@@ -55,18 +52,6 @@ void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s)
     free(s);
 }
 
-/* The bounds start empty (all zero); after that every step leaves them so. */
-static tb_result create_scene(tb_world* w, lbvh_state* s)
-{
-    tb_result r = tb_buffer_create(&w->memory, sizeof(tb_gpu_lbvh_bounds), USAGE, 0, &s->scene);
-    if (!r) r = tb_transfer_begin(&w->transfer, 0);
-    if (r) return r;
-    vkCmdFillBuffer(w->transfer.cb, s->scene.buffer, 0, VK_WHOLE_SIZE, 0);
-    r = tb_transfer_end(&w->transfer);
-    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
-    return r;
-}
-
 tb_result tb_lbvh_search_create(tb_world* w, tb_lbvh_search** out)
 {
     lbvh_state* s = calloc(1, sizeof *s);
@@ -77,7 +62,9 @@ tb_result tb_lbvh_search_create(tb_world* w, tb_lbvh_search** out)
     if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_keys", TB_WORKGROUP_SIZE, &s->keys);
     if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_pairs", TB_WORKGROUP_SIZE, &s->pairs);
     if (!r) r = tb_lbvh_kernels_create(&s->build, p);
-    if (!r) r = create_scene(w, s);
+    /* The bounds start empty (all zero); after that every step leaves them so. */
+    if (!r) r = tb_broadphase_buffer(w, sizeof(tb_gpu_lbvh_bounds), &s->scene);
+    if (!r) r = tb_broadphase_clear(w, &s->scene);
     return r;
 }
 
@@ -87,11 +74,11 @@ tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capaci
     if (capacity <= s->capacity) return TB_OK;
     free_arrays(w, s);
     VkDeviceSize per_body = (VkDeviceSize)(capacity ? capacity : 1) * sizeof(uint32_t);
-    tb_result r = tb_buffer_create(&w->memory, per_body, USAGE, 0, &s->keys_buf);
-    if (!r) r = tb_buffer_create(&w->memory, per_body, USAGE, 0, &s->values);
-    if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_node_bytes(capacity), USAGE, 0, &s->nodes);
-    if (!r) r = tb_buffer_create(&w->memory, tb_lbvh_link_bytes(capacity), USAGE, 0, &s->links);
-    if (!r) r = tb_buffer_create(&w->memory, per_body * TB_LBVH_CACHED_PAIRS, USAGE, 0, &s->cache);
+    tb_result r = tb_broadphase_buffer(w, per_body, &s->keys_buf);
+    if (!r) r = tb_broadphase_buffer(w, per_body, &s->values);
+    if (!r) r = tb_broadphase_buffer(w, tb_lbvh_node_bytes(capacity), &s->nodes);
+    if (!r) r = tb_broadphase_buffer(w, tb_lbvh_link_bytes(capacity), &s->links);
+    if (!r) r = tb_broadphase_buffer(w, per_body * TB_LBVH_CACHED_PAIRS, &s->cache);
     if (r) free_arrays(w, s);
     else s->capacity = capacity;
     return r;
@@ -106,13 +93,10 @@ static tb_gpu_ptr ptr_of(const tb_buffer* b)
 static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode, tb_gpu_ptr skip)
 {
     tb_gpu_broadphase_push push = { { mode, s->capacity, 0, 0 }, { { 0 } } };
-    tb_broadphase_put_address(&push.address[0], 0, s->keys_buf.address);
-    tb_broadphase_put_address(&push.address[0], 1, s->values.address);
-    tb_broadphase_put_address(&push.address[1], 0, s->scene.address);
-    tb_broadphase_put_address(&push.address[1], 1, s->nodes.address);
-    tb_broadphase_put_address(&push.address[2], 0, s->links.address);
-    tb_broadphase_put_address(&push.address[2], 1, skip.address);
-    tb_broadphase_put_address(&push.address[3], 0, s->cache.address);
+    push.address[0] = tb_gpu_addresses(s->keys_buf.address, s->values.address);
+    push.address[1] = tb_gpu_addresses(s->scene.address, s->nodes.address);
+    push.address[2] = tb_gpu_addresses(s->links.address, skip.address);
+    push.address[3] = tb_gpu_addresses(s->cache.address, 0);
     return push;
 }
 
@@ -175,7 +159,7 @@ static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
 
 static tb_result lbvh_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
 {
-    tb_gpu_ptr slots = tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr slots = tb_broadphase_slots(w);
     tb_gpu_ptr none = { 0 };
     search->n = 1;
     return tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &search->counts[0],

@@ -16,9 +16,6 @@
 
 #include "api/world.h"
 
-#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT)
-
 /* One buffer per TB_SAP_* address, in that order. */
 enum { SAP_BUFFERS = TB_SAP_ADDRESSES };
 
@@ -69,18 +66,6 @@ static VkDeviceSize buffer_bytes(int index, uint32_t capacity)
     }
 }
 
-/* A zero header: the first step sweeps along x (then each step chooses the next's axis). */
-static tb_result clear_header(tb_world* w, const tb_buffer* header)
-{
-    tb_transfer* t = &w->transfer;
-    tb_result r = tb_transfer_begin(t, sizeof(tb_gpu_sap_header));
-    if (r) return r;
-    memset(tb_transfer_upload(t, header->buffer, 0, sizeof(tb_gpu_sap_header)), 0,
-           sizeof(tb_gpu_sap_header));
-    r = tb_transfer_end(t);
-    return r ? r : tb_gpu_submit_wait(&w->gpu, &t->cb, 1);
-}
-
 /* Only the header's axis outlives a step, so growing the buffers is replacing them. The
  * world grows the sim's buffers first, which waits for the device, so no step still uses
  * ours. */
@@ -90,8 +75,9 @@ static tb_result sap_reserve(tb_world* w, uint32_t capacity)
     release_buffers(w, s);
     tb_result r = TB_OK;
     for (int b = 0; b < SAP_BUFFERS && !r; b++)
-        r = tb_buffer_create(&w->memory, buffer_bytes(b, capacity), USAGE, 0, &s->buffers[b]);
-    return r ? r : clear_header(w, &s->buffers[TB_SAP_HEADER]);
+        r = tb_broadphase_buffer(w, buffer_bytes(b, capacity), &s->buffers[b]);
+    /* A zero header: the first step sweeps along x (then each step chooses the next's). */
+    return r ? r : tb_broadphase_clear(w, &s->buffers[TB_SAP_HEADER]);
 }
 
 static tb_gpu_ptr buffer_ptr(const sap_state* s, int index, VkDeviceSize offset)
@@ -105,8 +91,8 @@ static tb_gpu_broadphase_push push_of(const sap_state* s, uint32_t mode)
     tb_gpu_broadphase_push push;
     memset(&push, 0, sizeof push);
     push.args.x = mode;
-    for (int b = 0; b < SAP_BUFFERS; b++)
-        tb_broadphase_put_address(&push.address[b / 2], b % 2, s->buffers[b].address);
+    for (int b = 0; b < SAP_BUFFERS; b += 2)
+        push.address[b / 2] = tb_gpu_addresses(s->buffers[b].address, s->buffers[b + 1].address);
     return push;
 }
 
@@ -114,7 +100,7 @@ static tb_result sap_record(tb_world* w, tb_pass_list* list, tb_broadphase_searc
 {
     sap_state* s = w->broadphase_state;
     tb_sim* sim = &w->sim;
-    tb_gpu_ptr slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8);
+    tb_gpu_ptr slots = tb_broadphase_slots(w);
     tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
     tb_gpu_ptr none = { 0 };
     tb_gpu_broadphase_push count = push_of(s, TB_BROADPHASE_COUNT);

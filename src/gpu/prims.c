@@ -34,7 +34,7 @@ tb_gpu_ptr tb_gpu_ptr_of(const tb_buffer* buffer, VkDeviceSize offset)
     return p;
 }
 
-static tb_gpu_ptr ptr_add(tb_gpu_ptr p, VkDeviceSize bytes)
+tb_gpu_ptr tb_gpu_ptr_add(tb_gpu_ptr p, VkDeviceSize bytes)
 {
     p.offset += bytes;
     p.address += bytes;
@@ -247,7 +247,7 @@ static tb_result record_scan(tb_prims* prims, tb_pass_list* list, uint32_t mode,
     if (!r) r = check_ptr(prims, out, "output");
     if (!r) r = check_ptr(prims, count, "count");
     if (r) return r;
-    tb_gpu_ptr args = scratch, sums = ptr_add(scratch, ARGS_BYTES);
+    tb_gpu_ptr args = scratch, sums = tb_gpu_ptr_add(scratch, ARGS_BYTES);
     tb_gpu_scan_push push = {
         .data = tb_gpu_addresses(in.address, out.address),
         .aux = tb_gpu_addresses(sums.address, total.address),
@@ -296,14 +296,14 @@ static sort_scratch sort_layout(const tb_prims* prims, tb_gpu_ptr base, uint32_t
     VkDeviceSize array_bytes = align_up(4 * (VkDeviceSize)(max_count ? max_count : 1), AREA_ALIGN);
     VkDeviceSize at = ARGS_BYTES;
     s.args = base;
-    s.spine_args = ptr_add(base, 16);
-    s.spine = ptr_add(base, at);
+    s.spine_args = tb_gpu_ptr_add(base, 16);
+    s.spine = tb_gpu_ptr_add(base, at);
     at += align_up(spine_bytes ? spine_bytes : 4, AREA_ALIGN);
-    s.totals = ptr_add(base, at);
+    s.totals = tb_gpu_ptr_add(base, at);
     at += align_up(4 * TB_PRIMS_RADIX, AREA_ALIGN);
-    s.keys = ptr_add(base, at);
+    s.keys = tb_gpu_ptr_add(base, at);
     at += array_bytes;
-    s.values = ptr_add(base, at);
+    s.values = tb_gpu_ptr_add(base, at);
     s.size = at + array_bytes;
     return s;
 }

@@ -43,6 +43,9 @@ typedef struct tb_gpu_ptr {
     VkDeviceAddress address;
 } tb_gpu_ptr;
 
+/// The same place `bytes` further on (buffer offset and address alike).
+tb_gpu_ptr tb_gpu_ptr_add(tb_gpu_ptr p, VkDeviceSize bytes);
+
 /// Two device addresses as the shaders read them (a uvec4): (low, high) of a, then of b.
 tb_gpu_uvec4 tb_gpu_addresses(VkDeviceAddress a, VkDeviceAddress b);
 

@@ -104,9 +104,7 @@ tb_result tb_solver_record_tail_list(const tb_solver* s, tb_pass_list* list, VkB
                                      const tb_solver_tail* tail)
 {
     tb_pass flags = per_pair(s->tail_list, counters, 0, 0, 0);
-    tb_gpu_ptr second = tail->work;
-    second.offset += (VkDeviceSize)tail->pair_capacity * 4;
-    second.address += (VkDeviceSize)tail->pair_capacity * 4;
+    tb_gpu_ptr second = tb_gpu_ptr_add(tail->work, (VkDeviceSize)tail->pair_capacity * 4);
     tb_result r = add(s, list, &flags);
     if (!r) r = tb_prims_compact(tail->prims, list, second, tail->work, tail->pair_count,
                                  tail->pair_capacity, tail->list_count, tail->scratch);
