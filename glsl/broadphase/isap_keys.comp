@@ -8,13 +8,12 @@
 // this step's counts and writes the header of this step's half.
 #include "world.glsl"
 #include "isap.glsl"
+#include "ordered.glsl"
 
 // Floats as uints that order like them, -0 and +0 equal (aabbs_touch cannot tell them apart).
 uint ordered_key(float x)
 {
-    uint u = floatBitsToUint(x);
-    if (u == 0x80000000u) u = 0u;
-    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
+    return ordered_bits(floatBitsToUint(x) == 0x80000000u ? 0.0 : x);
 }
 
 // Last step's bound while the bodies are the same, else one fresh from the largest dynamic

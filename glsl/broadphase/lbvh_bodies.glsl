@@ -6,6 +6,7 @@
 #define TB_LBVH_BODIES_GLSL
 
 #include "lbvh.glsl"
+#include "ordered.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer LbvhBounds {
     tb_gpu_lbvh_bounds b;
@@ -24,18 +25,6 @@ uint lbvh_capacity() { return push.args.y; }
 bool lbvh_skipped()
 {
     return step_aborted() || (push.address[2].zw != uvec2(0u) && LbvhUints(push.address[2].zw).v[0] != 0u);
-}
-
-// Floats as uints that order like them (negative ones flipped), never 0 for a finite float.
-uvec3 ordered_bits(vec3 f)
-{
-    uvec3 b = floatBitsToUint(f);
-    return mix(b | 0x80000000u, ~b, notEqual(b & 0x80000000u, uvec3(0u)));
-}
-
-vec3 from_ordered_bits(uvec3 u)
-{
-    return uintBitsToFloat(mix(~u, u & 0x7fffffffu, notEqual(u & 0x80000000u, uvec3(0u))));
 }
 
 vec3 body_centre(uint i)

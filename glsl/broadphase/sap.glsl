@@ -13,6 +13,7 @@
 #extension GL_EXT_buffer_reference_uvec2 : require
 
 #include "pairs.glsl"
+#include "ordered.glsl"
 
 layout(buffer_reference, std430, buffer_reference_align = 4) buffer SapUints { uint v[]; };
 // Sorted boxes are kept as uints: xyz a corner's float bits, w integer (slot or flags),
@@ -50,13 +51,6 @@ bool sap_is_large(uint body)
     vec3 side = body_aabb_max[body].xyz - body_aabb_min[body].xyz;
     float largest_dynamic = max(uintBitsToFloat(counters.grid.x), params.contact.x);
     return max(side.x, max(side.y, side.z)) > float(TB_SAP_LARGE_FACTOR) * largest_dynamic;
-}
-
-// Floats to uints of the same order (negative ones reversed below the positive ones).
-uint sap_ordered_bits(float f)
-{
-    uint u = floatBitsToUint(f);
-    return (u & 0x80000000u) != 0u ? ~u : u | 0x80000000u;
 }
 
 // The corner of a sorted box.

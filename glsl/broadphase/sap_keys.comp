@@ -18,7 +18,7 @@ void main()
     if (i == 0u) sap_header().h.state.yz = uvec2(params.counts.x);
     uint key = TB_SAP_KEY_DEAD;
     if (large) key = TB_SAP_KEY_LARGE;
-    else if (alive) key = sap_ordered_bits(body_aabb_min[i][axis]);
+    else if (alive) key = ordered_bits(body_aabb_min[i][axis]);
     sap_uints(TB_SAP_KEYS).v[i] = key;
     sap_uints(TB_SAP_ORDER).v[i] = i;
 }
