@@ -16,7 +16,12 @@ CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 CSTD    := -std=c99 -D_POSIX_C_SOURCE=200809L
 INCS    := -Iinclude -Iglsl/common -Isrc -I$(BUILD)
-LIBS    := -lvulkan -lm
+# libshaderc as Debian 12 ships it: its shared library leaves glslang unresolved, so the
+# static one and glslang's static libraries go in (hidden by the version script).
+SHADERC_LIBS := -lshaderc_combined -lglslang -lMachineIndependent -lOSDependent \
+                -lGenericCodeGen -lOGLCompiler -lSPIRV -lSPIRV-Tools-opt -lSPIRV-Tools \
+                -lstdc++ -lpthread
+LIBS    := -lvulkan $(SHADERC_LIBS) -lm
 GLSLANG ?= glslangValidator
 SPIRVVAL ?= spirv-val
 

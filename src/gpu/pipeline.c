@@ -161,12 +161,18 @@ void tb_pipelines_destroy(tb_pipelines* p)
 tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
                              VkPipeline* out)
 {
-    tb_diag* diag = p->gpu->diag;
     const tb_shader_blob* blob = tb_shader_find(shader);
-    if (!blob) return tb_fail(diag, TB_ERROR_DEVICE, "no embedded shader named %s", shader);
+    if (!blob) return tb_fail(p->gpu->diag, TB_ERROR_DEVICE, "no embedded shader named %s", shader);
+    return tb_pipeline_create_from(p, shader, blob->code, blob->size, workgroup_size, out);
+}
+
+tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint32_t* code,
+                                  size_t size, uint32_t workgroup_size, VkPipeline* out)
+{
+    tb_diag* diag = p->gpu->diag;
     VkShaderModuleCreateInfo module_info = {
         .sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-        .codeSize = blob->size, .pCode = blob->code,
+        .codeSize = size, .pCode = code,
     };
     VkShaderModule module;
     tb_result r = tb_vk_check(diag, vkCreateShaderModule(p->gpu->device, &module_info, NULL, &module),
@@ -188,7 +194,7 @@ tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workg
         .layout = p->layout,
     };
     r = tb_vk_check(diag, vkCreateComputePipelines(p->gpu->device, p->cache, 1, &info, NULL, out),
-                    shader);
+                    name);
     vkDestroyShaderModule(p->gpu->device, module, NULL);
     return r;
 }

@@ -24,6 +24,9 @@ void tb_pipelines_destroy(tb_pipelines* p);
 /// Build the compute pipeline of an embedded shader.
 tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
                              VkPipeline* out);
+/// Build a compute pipeline from SPIR-V (`size` bytes); `name` names it in errors.
+tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint32_t* code,
+                                  size_t size, uint32_t workgroup_size, VkPipeline* out);
 
 /// Point binding `binding` of the world's set at a whole buffer.
 void tb_pipelines_bind(tb_pipelines* p, uint32_t binding, VkBuffer buffer);
