@@ -15,13 +15,13 @@ BUILD   ?= build
 CFLAGS  ?= -O2 -g
 WARN    := -Wall -Wextra -Wshadow -Wstrict-prototypes -Wmissing-prototypes
 CSTD    := -std=c99 -D_POSIX_C_SOURCE=200809L
-INCS    := -Iinclude -Iglsl/common -Isrc -I$(BUILD)
+INCS    := -Iinclude -Iabi -Iglsl/common -Isrc -I$(BUILD)
 # libshaderc as Debian 12 ships it: its shared library leaves glslang unresolved, so the
 # static one and glslang's static libraries go in (hidden by the version script).
 SHADERC_LIBS := -lshaderc_combined -lglslang -lMachineIndependent -lOSDependent \
                 -lGenericCodeGen -lOGLCompiler -lSPIRV -lSPIRV-Tools-opt -lSPIRV-Tools \
                 -lstdc++ -lpthread
-LIBS    := -lvulkan $(SHADERC_LIBS) -lm
+LIBS    := -lvulkan $(SHADERC_LIBS) -ldl -lm
 GLSLANG ?= glslangValidator
 SPIRVVAL ?= spirv-val
 
@@ -43,6 +43,9 @@ TEST_CXX   := $(sort $(wildcard tests/test_*.cpp))
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%) $(TEST_CXX:tests/%.cpp=$(BUILD)/tests/%)
 CXX        ?= g++
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims
+PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
+REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early
+TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
@@ -53,7 +56,7 @@ RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
 .PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break check-python
 .SECONDARY:
-all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS)
+all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
 deps:
 	$(Q)sh tools/deps
@@ -69,6 +72,13 @@ $(BUILD)/spv/%.spv: glsl/%.comp
 $(BUILD)/shaders.c: $(SPV) tools/embed-spirv Makefile
 	$(call say,GEN,$@)
 	$(Q)sh tools/embed-spirv gpu/shaders.h tb_shader_blob tb_shader_blobs $(BUILD)/spv $(SHADERS:glsl/%.comp=%) > $@
+
+# Headers a shader compiled at run time can always include (a plugin's GLSL stages).
+GLSL_HEADERS := abi/tumble_plugin.glsl glsl/common/layout.h
+$(BUILD)/glsl_headers.c: $(GLSL_HEADERS) tools/embed-text Makefile
+	$(call say,GEN,$@)
+	@mkdir -p $(dir $@)
+	$(Q)sh tools/embed-text gpu/glsl.h tb_glsl_header tb_glsl_headers $(GLSL_HEADERS) > $@
 
 # --- renderer shaders (tools/render): the same path, one table of their own -------------
 $(BUILD)/render-spv/%.spv: tools/render/shaders/%
@@ -87,20 +97,22 @@ $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(CSTD) $(CFLAGS) $(WARN) $(INCS) -fPIC -fvisibility=hidden -DTB_BUILDING_LIBRARY -MMD -MP -c -o $@ $<
 
-$(BUILD)/obj/shaders.o: $(BUILD)/shaders.c
+$(BUILD)/obj/%.o: $(BUILD)/%.c
 	$(call say,CC,$<)
 	$(Q)$(CC) $(CSTD) $(CFLAGS) $(INCS) -fPIC -fvisibility=hidden -c -o $@ $<
 
-$(BUILD)/libtumble.so: $(LIB_OBJ) $(BUILD)/obj/shaders.o abi/tumble.map
-	$(call say,LD,$@)
-	$(Q)$(CC) -shared -o $@ $(LIB_OBJ) $(BUILD)/obj/shaders.o -Wl,--version-script=abi/tumble.map -Wl,-soname,libtumble.so.0 $(LIBS)
+EMBEDDED_OBJ := $(BUILD)/obj/shaders.o $(BUILD)/obj/glsl_headers.o
 
-$(BUILD)/libtumble.a: $(LIB_OBJ) $(BUILD)/obj/shaders.o
+$(BUILD)/libtumble.so: $(LIB_OBJ) $(EMBEDDED_OBJ) abi/tumble.map
+	$(call say,LD,$@)
+	$(Q)$(CC) -shared -o $@ $(LIB_OBJ) $(EMBEDDED_OBJ) -Wl,--version-script=abi/tumble.map -Wl,-soname,libtumble.so.0 $(LIBS)
+
+$(BUILD)/libtumble.a: $(LIB_OBJ) $(EMBEDDED_OBJ)
 	$(call say,AR,$@)
 	$(Q)rm -f $@ && ar rcs $@ $^
 
 # --- tools and tests --------------------------------------------------------------------
-TOOL_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Itools/scenes -Itools/render -Itools/render/shaders -Itests -Iglsl/common -I$(BUILD) $(RENDER_DEFS)
+TOOL_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -Itools/scenes -Itools/render -Itools/render/shaders -Itests -Iglsl/common -I$(BUILD) $(RENDER_DEFS)
 TOOL_DEPS   := $(SCENES_SRC) $(RENDER_SRC) $(wildcard tools/render/*.h tools/render/shaders/*.h tools/scenes/*.h) $(BUILD)/libtumble.a
 TOOL_LINK   := $(SCENES_SRC) $(RENDER_SRC) $(BUILD)/libtumble.a $(RENDER_LIBS) $(LIBS)
 
@@ -117,23 +129,67 @@ $(BUILD)/tumble-run: tools/run/run.c $(TOOL_DEPS)
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/run/run.c $(TOOL_LINK)
 
+# --- plugins (abi/tumble_plugin.h): the examples in tools/plugins, and those the tests
+# must see refused (tests/plugins) --------------------------------------------------------
+PLUGIN_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -Iglsl/common -fPIC -shared -fvisibility=hidden
+
+$(BUILD)/plugins/blast.spv: tools/plugins/blast.comp tools/plugins/blast.h abi/tumble_plugin.glsl glsl/common/layout.h
+	$(call say,GLSL,$<)
+	@mkdir -p $(dir $@)
+	$(Q)$(GLSLANG) -V --target-env vulkan1.2 -Iabi -Iglsl/common --quiet -o $@ $< >/dev/null
+	$(Q)$(SPIRVVAL) --target-env vulkan1.2 $@
+
+$(BUILD)/plugins/blast_spirv.h: $(BUILD)/plugins/blast.spv
+	$(Q)(echo "static const uint32_t blast_spirv[] = {"; \
+	  od -An -v -tx4 $< | sed -e 's/ *\([0-9a-f]\{8\}\)/0x\1u,/g'; echo "};") > $@
+
+$(BUILD)/plugins/tb_blast.so: tools/plugins/blast.c tools/plugins/blast.h $(BUILD)/plugins/blast_spirv.h abi/tumble_plugin.h
+	$(call say,LD,$@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -I$(BUILD)/plugins -DBLAST_SPIRV='"blast_spirv.h"' -o $@ $< -lm
+
+# The same plugin compiling its stage from blast.comp, found beside it, when it loads.
+$(BUILD)/plugins/tb_blast_glsl.so: tools/plugins/blast.c tools/plugins/blast.h tools/plugins/blast.comp abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)cp tools/plugins/blast.comp tools/plugins/blast.h $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $< -lm
+
+$(BUILD)/plugins/%.so: tools/plugins/%.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
+
+$(BUILD)/plugins/tb_contact_logger.so: tools/plugins/contact_logger.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
+
+$(BUILD)/tests/plugins/refused_%.so: tests/plugins/refused.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -DREFUSED=REFUSED_$$(echo $* | tr a-z A-Z) -o $@ $<
+
+$(BUILD)/tests/plugins/broken.comp: tests/plugins/broken.comp
+	@mkdir -p $(dir $@)
+	$(Q)cp $< $@
+
 # A C++ translation unit that includes tumble.h: the header must be C++-clean.
-$(BUILD)/tests/%: tests/%.cpp include/tumble.h $(BUILD)/libtumble.a
+$(BUILD)/tests/%: tests/%.cpp include/tumble.h abi/tumble_plugin.h $(BUILD)/libtumble.a
 	$(call say,CXX,$@)
 	@mkdir -p $(dir $@)
-	$(Q)$(CXX) -std=c++11 -O2 -Wall -Wextra -Wpedantic -Werror -Iinclude -o $@ $< $(BUILD)/libtumble.a $(LIBS)
+	$(Q)$(CXX) -std=c++11 -O2 -Wall -Wextra -Wpedantic -Werror -Iinclude -Iabi -o $@ $< $(BUILD)/libtumble.a $(LIBS)
 
 $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(call say,LD,$@)
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -o $@ $< tests/harness.c $(TOOL_LINK) -lcmocka
+	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -DTB_BUILD_DIR='"$(abspath $(BUILD))"' -o $@ $< tests/harness.c $(TOOL_LINK) -lcmocka
 
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths,
 # both at once (a test keeps about one core busy); their outputs follow each other.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
 TEST_LOGS := $(BUILD)/test-logs
-test: deps all $(TEST_BIN) check-exports check-readme abi-check check-abi-break check-python
+test: deps all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme abi-check check-abi-break check-python
 	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \

@@ -417,6 +417,28 @@ TB_API tb_result tb_world_read_contacts(tb_world* world, tb_contact* out, uint32
 /// Ids of live bodies in slot order; returns how many were written (at most `capacity`).
 TB_API uint32_t tb_world_body_ids(const tb_world* world, tb_body_id* out, uint32_t capacity);
 
+/* ---------------------------------------------------------------------------------------
+ * Plugins (abi/tumble_plugin.h says what a plugin is and how it is built)
+ */
+
+/// Plugin id, same scheme as tb_body_id.
+typedef struct tb_plugin_id { uint32_t index1; uint16_t world; uint16_t generation; } tb_plugin_id;
+
+/// Load the plugin at `path` (a shared object exporting tb_plugin_entry) into the world:
+/// its stages join the step (compiled now, when given as GLSL) and its callbacks run after
+/// each step call. Refused, with the world unchanged, when the file cannot be loaded, has no
+/// entry point, was built for a newer plugin ABI, describes itself wrongly (names, sizes,
+/// points, dispatch rules), or a stage's shader is not valid SPIR-V for the step (or its
+/// GLSL does not compile). At most 16 plugins and 16 plugin stages per world.
+TB_API tb_result tb_world_load_plugin(tb_world* world, const char* path, tb_plugin_id* out);
+/// Remove the plugin's stages and callbacks from the world and unload it.
+TB_API tb_result tb_world_unload_plugin(tb_world* world, tb_plugin_id plugin);
+/// Write `size` bytes at `offset` of the plugin's parameter block (the plugin defines its
+/// layout); the GPU sees it from the next step on. Refused beyond the block, or when the
+/// plugin's check rejects the block that would result.
+TB_API tb_result tb_world_set_plugin_param(tb_world* world, tb_plugin_id plugin, uint32_t offset,
+                                           const void* data, uint32_t size);
+
 #ifdef __cplusplus
 }
 #endif

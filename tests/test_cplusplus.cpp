@@ -1,9 +1,11 @@
 // tumble.h from C++: this translation unit includes the public header, compiled as C++11
 // with every warning an error, and uses it: a world, a shape, bodies made one at a time and
 // in bulk, steps, a bulk read, stats, errors. It proves the header is C++-clean (extern "C",
-// no C-only constructs) and links against the C library. Exits nonzero on failure; the
+// no C-only constructs) and links against the C library; so is the plugin header, whose
+// structs a C++ plugin fills. Exits nonzero on failure; the
 // validation layer is on under `make test` and any message it gives fails the test.
 #include "tumble.h"
+#include "tumble_plugin.h"
 
 #include <cmath>
 #include <cstdio>
@@ -53,6 +55,13 @@ int main()
     expect(tb_world_get_stats(world, &stats) == TB_OK, "stats");
     expect(stats.body_count == 100 && stats.pair_count == 0, "counts");
     expect(stats.validation_messages == 0, "validation messages");
+    tb_plugin_id plugin;
+    expect(tb_world_load_plugin(world, "no-such-plugin.so", &plugin) == TB_ERROR_INVALID_ARGUMENT,
+           "a missing plugin is refused");
+    tb_plugin_stage stage = {};
+    stage.size = sizeof stage;
+    stage.point = TB_PLUGIN_POST_STEP;
+    expect(stage.size >= 48 && TB_PLUGIN_ABI_VERSION >= 1u, "plugin structs");
     tb_world_destroy(world);
     return failures ? 1 : 0;
 }

@@ -73,7 +73,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  *   prev_manifolds  tb_gpu_manifold[pair cap]: last step's, indexed like its pairs (the
  *                   other half); the warm start reads them
  *   constraints     tb_gpu_constraint[pair cap]: solver data of this step */
-#define TB_BIND_COUNT           25
+#define TB_BIND_PLUGIN_PARAMS   25 /* vec4[TB_MAX_PLUGINS * TB_PLUGIN_PARAM_VEC4S]: each loaded
+                                      plugin's parameter block (abi/tumble_plugin.h), the host's
+                                      copy uploaded before a submission when it changed */
+#define TB_BIND_COUNT           26
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -159,6 +162,9 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */
+    TB_UVEC4 plugins;         /* x y: 1 + the step count (state.y) whose pre-step (x) and
+                                 post-broadphase (y) plugin stages have run: a step abandoned
+                                 after them and run again must not run them twice (step/plugin_mark) */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)
@@ -186,6 +192,20 @@ TB_STRUCT(tb_gpu_solver_body) {
 TB_STRUCT(tb_gpu_push) {
     TB_UVEC4 args;            /* x colour (or round), y iteration (or sub-round), z flags (or
                                  sub-rounds), w colouring pass (its parity picks the work list) */
+};
+
+/* Plugins (abi/tumble_plugin.h, abi/tumble_plugin.glsl): the points of the step where their
+ * stages run (the values of tb_plugin_point), their parameter blocks and push constants. */
+#define TB_PLUGIN_POINT_PRE_STEP        TB_U(0)
+#define TB_PLUGIN_POINT_POST_BROADPHASE TB_U(1)
+#define TB_PLUGIN_POINT_POST_SOLVE      TB_U(2)
+#define TB_PLUGIN_POINT_POST_STEP       TB_U(3)
+#define TB_PLUGIN_POINT_COUNT           4
+#define TB_MAX_PLUGINS          16
+#define TB_PLUGIN_PARAM_VEC4S   16   /* a parameter block: 256 bytes */
+TB_STRUCT(tb_gpu_plugin_push) {
+    TB_UVEC4 args;            /* x the plugin's first vec4 in plugin_params, y the point
+                                 (TB_PLUGIN_POINT_*), z the stage's index in the plugin, w unused */
 };
 
 /* Push constants of the broadphases' own kernels (src/broadphase): their buffers are passed

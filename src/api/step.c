@@ -6,7 +6,9 @@
  * (damping, the solver records) come after the pairs and colours are known, so a step that
  * overflows a buffer is abandoned before any body changes; gravity is applied in each of the
  * solver's substeps, so a resting body's weight is cancelled by its contact in the same
- * substep and it does not sink or jitter.
+ * substep and it does not sink or jitter. Plugins' stages join at their points: pre-step
+ * after step/begin, post-broadphase after the pairs, post-solve and post-step after
+ * integration.
  */
 #include "api/world.h"
 
@@ -138,6 +140,13 @@ static void solve_stage(builder* b)
     end_stage(b, "solver/solve");
 }
 
+/* The stages plugins add at `point` (src/api/plugin_stages.c). */
+static void plugin_stages(builder* b, tb_plugin_point point)
+{
+    if (!b->r) b->r = tb_plugins_record(b->w, point, &b->list);
+    tb_pass_list_free(&b->list);
+}
+
 static void single(builder* b, tb_kernel k, tb_dispatch_rule rule, const char* name)
 {
     if (rule == TB_DISPATCH_PER_BODY) per_body(b, k, 0);
@@ -151,8 +160,10 @@ tb_result tb_step_build(tb_world* w)
     tb_graph_clear(&w->graph);
     builder b = { .w = w };
     single(&b, TB_KERNEL_STEP_BEGIN, TB_DISPATCH_FIXED, "step/begin");
+    plugin_stages(&b, TB_PLUGIN_PRE_STEP);
     single(&b, TB_KERNEL_WORLD_AABB, TB_DISPATCH_PER_BODY, "broadphase/world_aabb");
     broadphase_stage(&b);
+    plugin_stages(&b, TB_PLUGIN_POST_BROADPHASE);
     narrowphase_stage(&b);
     colour_stage(&b);
     prepare_stage(&b);
@@ -160,6 +171,8 @@ tb_result tb_step_build(tb_world* w)
     solve_stage(&b);
     single(&b, TB_KERNEL_KEEP_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/keep");
     single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");
+    plugin_stages(&b, TB_PLUGIN_POST_SOLVE);
+    plugin_stages(&b, TB_PLUGIN_POST_STEP);
     single(&b, TB_KERNEL_STEP_END, TB_DISPATCH_FIXED, "step/end");
     tb_pass_list_free(&b.list);
     w->graph.tail = (tb_tail_copy){ w->sim.counters.buffer, w->sim.readback.buffer,

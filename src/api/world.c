@@ -103,6 +103,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
                             w->store.capacity, pairs);   /* clamped to the device's limit */
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
+    if (!r) r = tb_plugins_init(w);
     if (!r) r = tb_broadphase_shared_create(w);
     if (!r) r = w->broadphase->create(w);
     if (!r) r = w->broadphase->reserve(w, w->store.capacity);
@@ -161,6 +162,7 @@ void tb_world_destroy(tb_world* w)
     if (w->gpu.device) vkDeviceWaitIdle(w->gpu.device);
     if (w->gpu.device) {
         tb_graph_destroy(&w->graph);
+        tb_plugins_destroy(w);
         tb_step_kernels_destroy(w);
         if (w->broadphase) w->broadphase->destroy(w);
         tb_broadphase_shared_destroy(w);
@@ -277,6 +279,7 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
     if (r) return r;
     write_params(w, dt);
     vkCmdUpdateBuffer(t->cb, w->params_buffer.buffer, 0, sizeof w->params, &w->params);
+    tb_plugins_record_upload(w, t->cb);
     uint32_t no_abort = 0;   /* a step abandoned before is run again from here */
     vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, state), 4, &no_abort);
     if (shape_bytes) {
@@ -409,7 +412,7 @@ tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
                            "buffer growths", MAX_REDO);
     }
     if (n) tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
-    return TB_OK;
+    return n ? tb_plugins_after_step(w) : TB_OK;
 }
 
 tb_result tb_world_step(tb_world* w, float dt)

@@ -3,6 +3,7 @@
 #define TB_WORLD_H
 
 #include "api/diag.h"
+#include "api/plugins.h"
 #include "broadphase/broadphase.h"
 #include "geom/hull.h"
 #include "gpu/bodies.h"
@@ -111,6 +112,7 @@ struct tb_world {
     uint32_t shape_buffer_capacity;
     int shapes_dirty;
     tb_hull_table hulls;
+    tb_plugins plugins;
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced

@@ -74,29 +74,43 @@ static int resolve(const include_context* ctx, const char* requested, int type,
     return 0;
 }
 
+static const tb_glsl_header* embedded_header(const char* name)
+{
+    for (uint32_t i = 0; i < tb_glsl_header_count; i++)
+        if (strcmp(tb_glsl_headers[i].name, name) == 0) return &tb_glsl_headers[i];
+    return NULL;
+}
+
+static void set_text(shaderc_include_result* result, const char* name, char* text, size_t size)
+{
+    result->source_name = copy_string(name);
+    result->source_name_length = result->source_name ? strlen(name) : 0;
+    result->content = text;
+    result->content_length = text ? size : 0;
+}
+
 static shaderc_include_result* include_file(void* user, const char* requested, int type,
                                             const char* requesting, size_t depth)
 {
     (void)depth;
     include_context* ctx = user;
     shaderc_include_result* result = calloc(1, sizeof *result);
-    char found[PATH_MAX];
+    char found[PATH_MAX], name[PATH_MAX + 16];
     size_t size = 0;
     char* text = NULL;
+    const tb_glsl_header* header = NULL;
     if (!result) return NULL;
     if (resolve(ctx, requested, type, requesting, found) && (text = read_text(found, &size))) {
-        result->source_name = copy_string(found);
-        result->source_name_length = result->source_name ? strlen(found) : 0;
-        result->content = text;
-        result->content_length = size;
-        if (!result->source_name || !note_file(ctx->out, found)) ctx->out_of_memory = 1;
+        set_text(result, found, text, size);
+        if (!note_file(ctx->out, found)) ctx->out_of_memory = 1;
+    } else if ((header = embedded_header(requested))) {
+        snprintf(name, sizeof name, "<tumble>/%s", header->name);
+        set_text(result, name, copy_string(header->text), strlen(header->text));
     } else {
-        char message[PATH_MAX + 64];
-        snprintf(message, sizeof message, "cannot find or read include file \"%s\"", requested);
-        result->source_name = copy_string("");
-        result->content = copy_string(message);
-        result->content_length = result->content ? strlen(message) : 0;
+        snprintf(name, sizeof name, "cannot find or read include file \"%s\"", requested);
+        set_text(result, "", copy_string(name), strlen(name));
     }
+    if (!result->source_name || !result->content) ctx->out_of_memory = 1;
     return result;
 }
 

@@ -1,0 +1,67 @@
+/* Plugins loaded into a world (abi/tumble_plugin.h): their stages, parameter blocks and the
+ * contact events their callbacks get. */
+#ifndef TB_PLUGINS_H
+#define TB_PLUGINS_H
+
+#include "api/diag.h"
+#include "gpu/graph.h"
+#include "gpu/memory.h"
+#include "layout.h"
+#include "tumble_plugin.h"
+
+/// Plugin stages a world runs in all (with the step's own, within TB_MAX_STAGES).
+#define TB_MAX_PLUGIN_STAGES 16u
+
+typedef struct tb_plugin_stage_record {
+    char name[8 + 2 * (TB_PLUGIN_MAX_NAME + 1)];   ///< "plugin/<plugin>/<stage>"
+    tb_plugin_point point;
+    tb_plugin_dispatch dispatch;
+    uint32_t groups;
+    VkPipeline pipeline;
+} tb_plugin_stage_record;
+
+typedef struct tb_plugin_record {
+    uint16_t generation;
+    uint8_t alive;
+    void* handle;                          ///< dlopen's
+    tb_plugin desc;                        ///< the plugin's, fields it lacks zeroed
+    uint32_t stage_count;
+    tb_plugin_stage_record stages[TB_PLUGIN_MAX_STAGES];
+    unsigned char params[TB_PLUGIN_MAX_PARAM_BYTES];
+} tb_plugin_record;
+
+/// A pair in contact after a step call (the previous call's are compared with these).
+typedef struct tb_contact_pairs {
+    tb_contact_event* pairs;
+    uint32_t count, capacity;
+} tb_contact_pairs;
+
+typedef struct tb_plugins {
+    tb_plugin_record slots[TB_MAX_PLUGINS];
+    uint32_t stage_total;
+    tb_buffer params_buffer;               ///< every slot's block, bound at TB_BIND_PLUGIN_PARAMS
+    int params_dirty;
+    VkPipeline mark;                       ///< step/plugin_mark
+    tb_contact_pairs previous, current;    ///< contact pairs of the last two step calls
+    tb_contact_pairs begin, end;           ///< this call's events
+    tb_contact* contacts;                  ///< read-back space
+    uint32_t contact_capacity;
+} tb_plugins;
+
+struct tb_world;
+
+tb_result tb_plugins_init(struct tb_world* w);
+/// Unload every plugin and free everything.
+void tb_plugins_destroy(struct tb_world* w);
+
+/// Append the stages of `point`, each a stage of the graph, through `add_stage`.
+tb_result tb_plugins_record(struct tb_world* w, tb_plugin_point point, tb_pass_list* list);
+/// Upload the parameter blocks if they changed (into the transfer recorded before a step).
+void tb_plugins_record_upload(struct tb_world* w, VkCommandBuffer cb);
+/// After a step call: contact events to the plugins that want them.
+tb_result tb_plugins_after_step(struct tb_world* w);
+
+/// Check a stage's SPIR-V (`what` names it in the error).
+tb_result tb_plugin_check_spirv(tb_diag* diag, const char* what, const uint32_t* code, size_t size);
+
+#endif
