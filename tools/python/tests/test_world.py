@@ -91,3 +91,29 @@ def test_errors_are_exceptions(make_world):
     assert world.stats()["bodies"] == 0        # all or none: nothing was added
     with pytest.raises(KeyError):
         tumble.World(broadphase="octree")
+
+
+def plugin_path(name):
+    library = os.environ.get("TUMBLE_LIBRARY") or os.path.join(
+        os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "build", "libtumble.so")
+    return os.path.join(os.path.dirname(library), "plugins", name)
+
+
+def test_blast_plugin_from_python(make_world):
+    """The blast plugin (tools/plugins) pushes a ring of balls outwards at the rate its
+    parameters, given as a numpy array, say: 12 m/s^2 at the centre, 0 at radius 4."""
+    world = make_world(gravity=(0, 0, 0))
+    angles = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    ring = np.stack([2 * np.cos(angles), np.zeros(8), 2 * np.sin(angles)], axis=1)
+    balls = world.add_bodies(world.sphere(0.25), ring)
+    blast = world.load_plugin(plugin_path("tb_blast.so"))
+    blast.set_params(np.array([[0, 0, 0, 12], [4, 0, 0, 0]], dtype=np.float32))
+    world.step(1 / 60)
+    for k in range(8):
+        v, _ = world.velocity(balls, k)
+        assert np.allclose(v, ring[k] / 2 * 6 / 60, atol=1e-5)
+    with pytest.raises(tumble.TumbleError, match="radius"):
+        blast.set_params(np.array([-1], dtype=np.float32), offset=16)
+    blast.unload()
+    with pytest.raises(tumble.TumbleError):
+        blast.unload()

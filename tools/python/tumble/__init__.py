@@ -83,6 +83,23 @@ class Bodies:
         return self.count
 
 
+class Plugin:
+    """A plugin loaded into a world: its parameter block and unloading."""
+
+    def __init__(self, world, plugin_id):
+        self._world, self.id = world, plugin_id
+
+    def set_params(self, data, offset=0):
+        """Write `data` (bytes, or a numpy array such as float32 vectors) at `offset` of the
+        plugin's parameter block; the GPU sees it from the next step on."""
+        raw = np.ascontiguousarray(data).tobytes() if not isinstance(data, bytes) else data
+        self._world._check(lib.tb_world_set_plugin_param(self._world._w, self.id, offset,
+                                                        raw, len(raw)))
+
+    def unload(self):
+        self._world._check(lib.tb_world_unload_plugin(self._world._w, self.id))
+
+
 class World:
     """A world on a Vulkan device. Keyword arguments set tb_world_def fields
     (gravity=(0, -9.81, 0), substeps=6, initial_body_capacity=..., ...); broadphase
@@ -190,6 +207,14 @@ class World:
         linear, angular = ffi.new("tb_vec3*"), ffi.new("tb_vec3*")
         self._check(lib.tb_body_get_velocity(self._w, bodies.ids[k], linear, angular))
         return (linear.x, linear.y, linear.z), (angular.x, angular.y, angular.z)
+
+    # ---- plugins ------------------------------------------------------------------------
+
+    def load_plugin(self, path):
+        """Load a plugin (abi/tumble_plugin.h) into the world; returns its Plugin."""
+        out = ffi.new("tb_plugin_id*")
+        self._check(lib.tb_world_load_plugin(self._w, os.fsencode(path), out))
+        return Plugin(self, out[0])
 
     # ---- stepping and stats ---------------------------------------------------------------
 
