@@ -1,7 +1,8 @@
 /* bench: times a scene step by step on one device and prints a table plus one JSON line.
  *
  *   bench --scene NAME --n N --steps S [--warmup W] [--seed K] [--device D]
- *         [--broadphase grid|sap|lbvh|isap] [--csv FILE] [--json-only] [--help]
+ *         [--broadphase grid|sap|lbvh|isap] [--plugin FILE] [--csv FILE] [--json-only]
+ *         [--help]
  *
  * N or S of 0 mean the scene's defaults (`make bench` passes 0 when they are unset).
  * The last line of stdout is always the JSON record, so scripts can take `tail -n 1`.
@@ -33,6 +34,7 @@ typedef struct options {
     const char* frames;   /* NULL: no pictures; else a folder for frame_NNNNN.png */
     uint32_t every;       /* with frames: a picture every this many timed steps */
     int contacts;         /* with frames: draw contact points and normals */
+    const char* plugin;   /* NULL: none; else a plugin loaded before the scene is built */
 } options;
 
 /* Pictures of the timed steps. Rendering happens between steps, outside the timings. */
@@ -66,7 +68,7 @@ static void print_usage(FILE* f)
 {
     fprintf(f,
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
-            "             [--device D] [--broadphase B] [--csv FILE] [--json-only]\n"
+            "             [--device D] [--broadphase B] [--plugin FILE] [--csv FILE] [--json-only]\n"
             "             [--frames DIR [--every K] [--contacts]] [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
@@ -75,6 +77,7 @@ static void print_usage(FILE* f)
             "the best GPU)\n"
             "  --broadphase  grid, sap, lbvh or isap (default: TUMBLE_BROADPHASE, else the\n"
             "                library's choice)\n"
+            "  --plugin      load this plugin (its default parameters) before the scene\n"
             "  --csv         append one result row to FILE (header written if new)\n"
             "  --json-only   print only the JSON line\n"
             "  --frames      write a PNG of every K-th timed step into DIR (tools/render/video\n"
@@ -117,6 +120,8 @@ static int parse_args(int argc, char** argv, options* o)
             o->device = v;
         } else if (strcmp(a, "--broadphase") == 0) {
             ok = parse_broadphase(v, &o->broadphase);
+        } else if (strcmp(a, "--plugin") == 0) {
+            o->plugin = v;
         } else if (strcmp(a, "--csv") == 0) {
             o->csv_path = v;
         } else if (strcmp(a, "--n") == 0) {
@@ -435,6 +440,9 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 {
     tb_result r = tb_world_device_info(world, dev);
     if (r != TB_OK) return fail(world, "tb_world_device_info", r);
+    tb_plugin_id plugin;
+    if (o->plugin && (r = tb_world_load_plugin(world, o->plugin, &plugin)) != TB_OK)
+        return fail(world, "tb_world_load_plugin", r);
     scene_params params = { o->n, o->seed };
     scene_instance* inst = NULL;
     r = sc->build(world, &params, &inst);
@@ -463,7 +471,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0 };
+    options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0, NULL };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);
