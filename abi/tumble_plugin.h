@@ -9,8 +9,8 @@
  *   write (the body arrays, the pairs, the plugin's parameter block) and must call
  *   tb_plugin_begin() first. The parameter block (up to TB_PLUGIN_MAX_PARAM_BYTES) is set
  *   by the host with tb_world_set_plugin_param and reaches the GPU at the next step.
- * - Host callbacks: after each tb_world_step / tb_world_step_n call, the pairs of bodies
- *   whose contact began and ended since the previous call, with their impulses.
+ * - Host callbacks: for every step, the pairs of bodies whose contact began and ended in it,
+ *   with their impulses (found on the GPU; called before tb_world_step returns).
  *
  * Versioning: tb_plugin and tb_plugin_stage start with their size, and tb_plugin with the
  * ABI version the plugin was built for. A library loads plugins built for its version or
@@ -87,10 +87,12 @@ typedef struct tb_plugin_stage {
     const char* glsl_path;
 } tb_plugin_stage;
 
-/// A pair of bodies whose contact began or ended. For a beginning, the pair as it is now;
-/// for an end, as it was in the last step it touched.
+/// A pair of bodies whose contact began or ended in a step: a pair is in contact when the
+/// narrowphase gave it points (tb_world_read_contacts lists them). A beginning describes
+/// the pair in that step, an end the pair in the step before, the last it touched.
 typedef struct tb_contact_event {
-    tb_body_id a, b;              ///< as tb_world_read_contacts gives them (may be stale for an end)
+    tb_body_id a, b;              ///< as tb_world_read_contacts gives them; for an end, a body
+                                  ///< destroyed since is the null id
     tb_vec3 point;                ///< the pair's first contact point
     tb_vec3 normal;               ///< from a towards b
     float normal_impulse;         ///< N s, summed over the pair's points
@@ -98,15 +100,19 @@ typedef struct tb_contact_event {
     uint32_t point_count;
 } tb_contact_event;
 
+/// One step's events: beginnings, then ends, each ordered by the bodies' slots.
 typedef struct tb_contact_events {
-    uint64_t step;                ///< tb_world_stats.steps after the call that stepped
+    uint64_t step;                ///< the step: tb_world_stats.steps once it was taken
     const tb_contact_event* begin;
     uint32_t begin_count;
     const tb_contact_event* end;
     uint32_t end_count;
 } tb_contact_events;
 
-/// After a step call, when some contact began or ended. `world` may be queried (see above).
+/// Called for each step in which some contact began or ended, in step order, before the
+/// step call returns (tb_world_step_n: once per step that had events). `world` may be
+/// queried (see above) but not stepped. Contacts that already touched when the plugin was
+/// loaded do not begin again.
 typedef void tb_plugin_contacts_fn(tb_world* world, void* user, const tb_contact_events* events);
 /// Check a parameter block before it is taken (tb_world_set_plugin_param): return 0 to
 /// accept it, else write a sentence saying what is wrong to `why` (why_size bytes).

@@ -311,21 +311,30 @@ static void bouncing_balls(tb_world* w)
     }
 }
 
+/* A logger writing to a fresh temporary file (its name in `path`, PATH_SIZE bytes). */
+#define PATH_SIZE 64
+static tb_plugin_id load_logger(tb_world* w, char* path)
+{
+    snprintf(path, PATH_SIZE, "/tmp/tumble-contact-log-XXXXXX");
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    setenv("TB_CONTACT_LOG", path, 1);
+    tb_plugin_id logger;
+    th_assert_ok(tb_world_load_plugin(w, plugin_path("plugins/tb_contact_logger.so"), &logger));
+    return logger;
+}
+
 #define LOG_STEPS 150
 #define MAX_EVENTS 512
 
 static void test_logger_events_match_contacts(void** state)
 {
     (void)state;
-    char log_path[] = "/tmp/tumble-contact-log-XXXXXX";
-    int fd = mkstemp(log_path);
-    assert_true(fd >= 0);
-    close(fd);
-    setenv("TB_CONTACT_LOG", log_path, 1);
+    char log_path[PATH_SIZE];
     tb_world* w = th_world_create(NULL);
     bouncing_balls(w);
-    tb_plugin_id logger;
-    th_assert_ok(tb_world_load_plugin(w, plugin_path("plugins/tb_contact_logger.so"), &logger));
+    tb_plugin_id logger = load_logger(w, log_path);
     static event_line expected[MAX_EVENTS];
     pair_state before[64], now[64];
     uint32_t m = 0, total = 0, begins = 0, ends = 0;
@@ -360,6 +369,84 @@ static void test_logger_events_match_contacts(void** state)
     th_world_destroy(w);
 }
 
+static char* read_all(const char* path)
+{
+    FILE* f = fopen(path, "rb");
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    char* text = calloc(1, (size_t)n + 1);
+    assert_non_null(text);
+    assert_int_equal(fread(text, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+    return text;
+}
+
+/* tb_world_step_n(w, dt, 10) reports every step's events, as ten single steps do. */
+static void test_events_of_every_step_in_step_n(void** state)
+{
+    (void)state;
+    char paths[2][PATH_SIZE];
+    tb_world* w[2];
+    tb_plugin_id logger[2];
+    for (int k = 0; k < 2; k++) {
+        w[k] = th_world_create(NULL);
+        bouncing_balls(w[k]);
+        logger[k] = load_logger(w[k], paths[k]);
+    }
+    for (int s = 0; s < LOG_STEPS; s++) th_assert_ok(tb_world_step(w[0], DT));
+    for (int s = 0; s < LOG_STEPS; s += 10) th_assert_ok(tb_world_step_n(w[1], DT, 10));
+    for (int k = 0; k < 2; k++) th_assert_ok(tb_world_unload_plugin(w[k], logger[k]));
+    char* one = read_all(paths[0]);
+    char* ten = read_all(paths[1]);
+    assert_true(strlen(one) > 1000);
+    assert_string_equal(one, ten);
+    free(one);
+    free(ten);
+    for (int k = 0; k < 2; k++) {
+        unlink(paths[k]);
+        th_world_destroy(w[k]);
+    }
+}
+
+/* 1500 balls land on the ground in the first step: more events than the event buffer
+ * first holds, so the step is run again with a bigger one, and each event comes once. */
+static void test_many_events_grow_the_buffer(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_id ball = th_sphere(w, 0.2f);
+    for (int i = 0; i < 1500; i++) {
+        tb_body_def d = th_dynamic_def(ball, th_v3(0.5f * (float)(i % 50), 0.2f, 0.5f * (float)(i / 50)));
+        th_body(w, &d);
+    }
+    char path[PATH_SIZE];
+    tb_plugin_id logger = load_logger(w, path);
+    th_assert_ok(tb_world_step(w, DT));
+    assert_true(th_stats(w).steps_redone >= 1);
+    th_assert_ok(tb_world_unload_plugin(w, logger));
+    FILE* f = fopen(path, "r");
+    assert_non_null(f);
+    event_line e;
+    uint32_t begins = 0;
+    unsigned previous = 0;
+    while (read_event(f, &e)) {
+        assert_int_equal(e.step, 1);
+        assert_string_equal(e.kind, "begin");
+        assert_int_equal(e.pair.a.index1, 1);                 /* the ground, then each ball */
+        assert_true(e.pair.b.index1 > previous);              /* once, in order */
+        previous = e.pair.b.index1;
+        begins++;
+    }
+    assert_int_equal(begins, 1500);
+    fclose(f);
+    unlink(path);
+    th_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -370,6 +457,8 @@ int main(void)
         cmocka_unit_test(test_plugin_capacity),
         cmocka_unit_test(test_broken_plugins_are_refused),
         cmocka_unit_test(test_logger_events_match_contacts),
+        cmocka_unit_test(test_events_of_every_step_in_step_n),
+        cmocka_unit_test(test_many_events_grow_the_buffer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

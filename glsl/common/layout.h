@@ -86,7 +86,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * does nothing, so the bodies keep the state they had before the step; the host grows
  * what overflowed and runs the step again. */
 #define TB_ABORT_PAIRS          TB_U(1)   /* more pairs than the pair capacity */
-#define TB_ABORT_COLOURS        TB_U(2)   /* constraints left uncoloured after every colouring round */
+#define TB_ABORT_COLOURS        TB_U(2)
+#define TB_ABORT_EVENTS         TB_U(4)   /* more contact events than the event capacity */   /* constraints left uncoloured after every colouring round */
 
 /* Graph colouring: at most this many colours (rounds). Claims pack the round into the top
  * bits and a permutation of the constraint index into the low TB_COLOUR_INDEX_BITS. */
@@ -165,6 +166,10 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 plugins;         /* x y: 1 + the step count (state.y) whose pre-step (x) and
                                  post-broadphase (y) plugin stages have run: a step abandoned
                                  after them and run again must not run them twice (step/plugin_mark) */
+    TB_UVEC4 events;          /* contact events (narrowphase/events): x written so far in this
+                                 submission, y written by its completed steps (the host reads
+                                 those and zeroes x and y before a submission), z pairs of the
+                                 last completed step (its manifolds are prev_manifolds), w unused */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)
@@ -207,6 +212,29 @@ TB_STRUCT(tb_gpu_plugin_push) {
     TB_UVEC4 args;            /* x the plugin's first vec4 in plugin_params, y the point
                                  (TB_PLUGIN_POINT_*), z the stage's index in the plugin, w unused */
 };
+
+/* A pair of bodies whose contact began or ended in a step (narrowphase/events, for plugins'
+ * host callbacks): a pair is in contact when its manifold has points. */
+TB_STRUCT(tb_gpu_contact_event) {
+    TB_UVEC4 info;            /* x TB_EVENT_BEGIN or _END, y body a, z body b, w the step
+                                 (counters.state.y while it ran) */
+    TB_VEC4 point;            /* xyz the pair's first point, w its point count */
+    TB_VEC4 normal;           /* xyz from a to b, w normal impulse of the step, summed over the
+                                 points (for an end: of the last step it touched) */
+    TB_VEC4 friction;         /* xyz friction impulse of the step, world frame, summed; w unused */
+};
+#define TB_EVENT_BEGIN          TB_U(0)
+#define TB_EVENT_END            TB_U(1)
+/* Push constants of narrowphase/events: args x the pass (TB_EVENTS_*), y the event capacity;
+ * address xy the events (tb_gpu_contact_event[capacity]), zw the match marks (uint[pair
+ * capacity]: 1 + the step in which last step's pair q was found again with points). */
+TB_STRUCT(tb_gpu_events_push) {
+    TB_UVEC4 args;
+    TB_UVEC4 address;
+};
+#define TB_EVENTS_BEGIN         TB_U(0)   /* per pair of this step: those new with points */
+#define TB_EVENTS_END           TB_U(1)   /* per pair of last step: those with points, unmatched */
+#define TB_EVENTS_END_GROUPS    256       /* workgroups of the end pass (a grid-stride loop) */
 
 /* Push constants of the broadphases' own kernels (src/broadphase): their buffers are passed
  * as device addresses, so a broadphase needs no binding of the world's set. */

@@ -14,6 +14,7 @@ void main()
         counters.state.zw = uvec2(0u);
         counters.grid = uvec4(0u, 0u, params.counts.x, 0u);
         counters.solver = uvec4(0u);
+        counters.events.x = counters.events.y;   // no event of an abandoned attempt stays
     }
     for (uint c = t; c < TB_MAX_COLOURS; c += gl_WorkGroupSize.x) {
         counters.colour[c] = uvec4(0u);

@@ -1,117 +1,134 @@
-/* Contact events for plugins: after a step call, the pairs whose contact began or ended
- * since the previous call. A pair is in contact when tb_world_read_contacts lists a point
- * of it. Only worlds with a plugin that wants the events read the contacts back. */
+/* Contact events for plugins' host callbacks: the pairs whose contact began or ended in a
+ * step. The GPU finds them (narrowphase/events, recorded only while a loaded plugin wants
+ * them), so what comes back is proportional to the events, not to the contacts. After each
+ * submission the events of its completed steps go to the plugins, one callback per step
+ * that has any, each sorted by kind and then by the bodies' slots. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "api/world.h"
 
-static int wants_events(const tb_world* w)
+#define FIRST_EVENT_CAPACITY 1024u
+#define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT)
+
+int tb_plugins_want_events(const tb_world* w)
 {
     for (uint32_t i = 0; i < TB_MAX_PLUGINS; i++)
         if (w->plugins.slots[i].alive && w->plugins.slots[i].desc.on_contacts) return 1;
     return 0;
 }
 
-static tb_result reserve(tb_world* w, tb_contact_pairs* list, uint32_t count)
+static tb_result replace_event_buffer(tb_world* w, uint32_t capacity)
 {
-    if (count <= list->capacity) return TB_OK;
-    uint32_t cap = list->capacity ? list->capacity : 64;
-    while (cap < count) cap *= 2;
-    tb_contact_event* grown = realloc(list->pairs, cap * sizeof *grown);
-    if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    list->pairs = grown;
-    list->capacity = cap;
+    tb_plugins* p = &w->plugins;
+    tb_buffer fresh;
+    tb_result r = tb_buffer_create(&w->memory, (VkDeviceSize)capacity * sizeof(tb_gpu_contact_event),
+                                   USAGE, 0, &fresh);
+    if (r) return r;
+    tb_buffer_destroy(&w->memory, &p->event_buffer);
+    p->event_buffer = fresh;
+    p->event_capacity = capacity;
+    w->step_built = 0;   /* the passes hold its address */
     return TB_OK;
 }
 
-static tb_result read_contacts(tb_world* w, uint32_t* count)
+tb_result tb_plugins_grow_events(tb_world* w, uint32_t need)
+{
+    uint64_t want = (uint64_t)need + need / 4 + 64;
+    if (want < 2ull * w->plugins.event_capacity) want = 2ull * w->plugins.event_capacity;
+    if (want > UINT32_MAX / sizeof(tb_gpu_contact_event)) want = UINT32_MAX / sizeof(tb_gpu_contact_event);
+    return replace_event_buffer(w, (uint32_t)want);
+}
+
+static tb_pass events_pass(tb_world* w, uint32_t kind)
 {
     tb_plugins* p = &w->plugins;
-    tb_result r = tb_world_read_contacts(w, p->contacts, p->contact_capacity, count);
-    if (r || *count <= p->contact_capacity) return r;
-    tb_contact* grown = realloc(p->contacts, *count * sizeof *grown);
-    if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    p->contacts = grown;
-    p->contact_capacity = *count;
-    return tb_world_read_contacts(w, p->contacts, p->contact_capacity, count);
+    uint64_t events = p->event_buffer.address;
+    uint64_t marks = w->sim.pair[TB_SIM_EVENT_MARKS].address;
+    tb_gpu_events_push push = {
+        { kind, p->event_capacity, 0, 0 },
+        { (uint32_t)events, (uint32_t)(events >> 32), (uint32_t)marks, (uint32_t)(marks >> 32) },
+    };
+    tb_pass pass = tb_pass_with_args(p->events, kind == TB_EVENTS_BEGIN ? TB_DISPATCH_INDIRECT
+                                                                        : TB_DISPATCH_FIXED,
+                                     w->sim.counters.buffer, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
+                                     0, 0, 0);
+    if (kind == TB_EVENTS_END) pass.groups[0] = TB_EVENTS_END_GROUPS;
+    pass.push_size = sizeof push;
+    memcpy(pass.push, &push, sizeof push);
+    return pass;
 }
 
-static int same_pair(const tb_contact_event* e, const tb_contact* c)
+tb_result tb_plugins_record_events(tb_world* w, tb_pass_list* list)
 {
-    return memcmp(&e->a, &c->a, sizeof c->a) == 0 && memcmp(&e->b, &c->b, sizeof c->b) == 0;
+    if (!tb_plugins_want_events(w)) return TB_OK;
+    tb_result r = w->plugins.event_buffer.buffer ? TB_OK
+                  : replace_event_buffer(w, FIRST_EVENT_CAPACITY);
+    tb_pass begin = events_pass(w, TB_EVENTS_BEGIN), end = events_pass(w, TB_EVENTS_END);
+    if (!r) r = tb_pass_list_add(list, &w->diag, &begin);
+    if (!r) r = tb_pass_list_add(list, &w->diag, &end);
+    if (!r) r = tb_graph_append_passes(&w->graph, "plugin/contact_events", list);
+    return r;
 }
 
-static uint64_t key_of(const tb_contact_event* e)
+/* ---- delivery ---------------------------------------------------------------------------- */
+
+static int by_step_kind_bodies(const void* x, const void* y)
 {
-    return (uint64_t)e->a.index1 << 32 | e->b.index1;
+    const tb_gpu_contact_event *e = x, *f = y;
+    const uint32_t a[4] = { e->info.w, e->info.x, e->info.y, e->info.z };
+    const uint32_t b[4] = { f->info.w, f->info.x, f->info.y, f->info.z };
+    for (int i = 0; i < 4; i++)
+        if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
+    return 0;
 }
 
-static int by_key(const void* x, const void* y)
+static tb_result read_events(tb_world* w, uint32_t count)
 {
-    uint64_t a = key_of(x), b = key_of(y);
-    return a < b ? -1 : a > b;
-}
-
-/* One event per pair (its points are consecutive), impulses summed; sorted by pair. */
-static tb_result gather_pairs(tb_world* w, const tb_contact* c, uint32_t count)
-{
-    tb_contact_pairs* now = &w->plugins.current;
-    now->count = 0;
-    for (uint32_t i = 0; i < count; i++) {
-        tb_contact_event* e = now->count ? &now->pairs[now->count - 1] : NULL;
-        if (!e || !same_pair(e, &c[i])) {
-            tb_result r = reserve(w, now, now->count + 1);
-            if (r) return r;
-            e = &now->pairs[now->count++];
-            *e = (tb_contact_event){ .a = c[i].a, .b = c[i].b, .point = c[i].point,
-                                     .normal = c[i].normal };
-        }
-        e->normal_impulse += c[i].normal_impulse;
-        e->friction_impulse.x += c[i].friction_impulse.x;
-        e->friction_impulse.y += c[i].friction_impulse.y;
-        e->friction_impulse.z += c[i].friction_impulse.z;
-        e->point_count++;
+    tb_plugins* p = &w->plugins;
+    if (count > p->sorted_capacity) {
+        tb_gpu_contact_event* grown = realloc(p->sorted, count * sizeof *grown);
+        if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+        p->sorted = grown;
+        p->sorted_capacity = count;
     }
-    if (now->count > 1) qsort(now->pairs, now->count, sizeof *now->pairs, by_key);
+    VkDeviceSize bytes = (VkDeviceSize)count * sizeof(tb_gpu_contact_event);
+    tb_transfer* t = &w->transfer;
+    tb_result r = tb_transfer_begin(t, bytes + 64);
+    if (r) return r;
+    const void* landing = tb_transfer_download(t, p->event_buffer.buffer, 0, bytes);
+    r = tb_transfer_end(t);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &t->cb, 1);
+    if (r) return r;
+    memcpy(p->sorted, landing, bytes);
+    qsort(p->sorted, count, sizeof *p->sorted, by_step_kind_bodies);
     return TB_OK;
 }
 
-static tb_result push(tb_world* w, tb_contact_pairs* list, const tb_contact_event* e)
+static tb_result append(tb_world* w, tb_event_list* list, const tb_gpu_contact_event* e)
 {
-    tb_result r = reserve(w, list, list->count + 1);
-    if (!r) list->pairs[list->count++] = *e;
-    return r;
-}
-
-/* Walk both sorted lists: pairs only now began, pairs only before ended. A pair whose
- * slots were reused by other bodies (new generations) is a different pair. */
-static tb_result compare(tb_world* w)
-{
-    tb_plugins* p = &w->plugins;
-    p->begin.count = p->end.count = 0;
-    uint32_t i = 0, j = 0;
-    tb_result r = TB_OK;
-    while (!r && (i < p->current.count || j < p->previous.count)) {
-        const tb_contact_event* now = i < p->current.count ? &p->current.pairs[i] : NULL;
-        const tb_contact_event* before = j < p->previous.count ? &p->previous.pairs[j] : NULL;
-        int order = !now ? 1 : !before ? -1 : by_key(now, before);
-        if (order == 0 && memcmp(&now->a, &before->a, sizeof now->a) == 0 &&
-            memcmp(&now->b, &before->b, sizeof now->b) == 0) {
-            i++, j++;
-            continue;
-        }
-        if (order <= 0) r = push(w, &p->begin, &p->current.pairs[i++]);
-        if (!r && order >= 0) r = push(w, &p->end, &p->previous.pairs[j++]);
+    if (list->count == list->capacity) {
+        uint32_t cap = list->capacity ? 2 * list->capacity : 64;
+        tb_contact_event* grown = realloc(list->events, cap * sizeof *grown);
+        if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+        list->events = grown;
+        list->capacity = cap;
     }
-    return r;
+    list->events[list->count++] = (tb_contact_event){
+        .a = tb_body_id_of_slot(w, e->info.y), .b = tb_body_id_of_slot(w, e->info.z),
+        .point = { e->point.x, e->point.y, e->point.z },
+        .normal = { e->normal.x, e->normal.y, e->normal.z },
+        .normal_impulse = e->normal.w,
+        .friction_impulse = { e->friction.x, e->friction.y, e->friction.z },
+        .point_count = (uint32_t)e->point.w,
+    };
+    return TB_OK;
 }
 
-static void deliver(tb_world* w)
+static void call_plugins(tb_world* w, uint64_t step)
 {
     tb_plugins* p = &w->plugins;
-    if (!p->begin.count && !p->end.count) return;
-    tb_contact_events events = { w->steps, p->begin.pairs, p->begin.count, p->end.pairs,
+    tb_contact_events events = { step, p->begin.events, p->begin.count, p->end.events,
                                  p->end.count };
     for (uint32_t i = 0; i < TB_MAX_PLUGINS; i++) {
         tb_plugin_record* plugin = &p->slots[i];
@@ -120,21 +137,22 @@ static void deliver(tb_world* w)
     }
 }
 
-tb_result tb_plugins_after_step(tb_world* w)
+/* The step numbers the callbacks see are tb_world_stats.steps after that step: the GPU's
+ * count of completed steps (info.w counts those before it) plus one. */
+tb_result tb_plugins_deliver_events(tb_world* w, const tb_gpu_counters* counters)
 {
     tb_plugins* p = &w->plugins;
-    if (!wants_events(w)) {
-        p->previous.count = 0;
-        return TB_OK;
+    uint32_t count = counters->events.y;
+    if (!count || !tb_plugins_want_events(w) || !p->event_buffer.buffer) return TB_OK;
+    if (count > p->event_capacity) count = p->event_capacity;
+    tb_result r = read_events(w, count);
+    for (uint32_t i = 0; i < count && !r;) {
+        uint32_t step = p->sorted[i].info.w;
+        p->begin.count = p->end.count = 0;
+        for (; i < count && p->sorted[i].info.w == step && !r; i++)
+            r = append(w, p->sorted[i].info.x == TB_EVENT_BEGIN ? &p->begin : &p->end,
+                       &p->sorted[i]);
+        if (!r) call_plugins(w, (uint64_t)step + 1);
     }
-    uint32_t count = 0;
-    tb_result r = read_contacts(w, &count);
-    if (!r) r = gather_pairs(w, p->contacts, count);
-    if (!r) r = compare(w);
-    if (r) return r;
-    tb_contact_pairs swap = p->previous;
-    p->previous = p->current;
-    p->current = swap;
-    deliver(w);
-    return TB_OK;
+    return r;
 }

@@ -3,7 +3,7 @@
 
 #include "api/world.h"
 
-static tb_body_id id_of(const tb_world* w, uint32_t slot)
+tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot)
 {
     if (slot >= w->body_slots.used || !w->bodies[slot].alive) return tb_null_body;
     return (tb_body_id){ slot + 1, w->serial, w->bodies[slot].generation };
@@ -23,7 +23,7 @@ static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu
         const tb_gpu_vec4* p = &m->point[k];
         const tb_gpu_vec4* j = &m->impulse[k];
         out[k] = (tb_contact){
-            .a = id_of(w, m->info.y), .b = id_of(w, m->info.z),
+            .a = tb_body_id_of_slot(w, m->info.y), .b = tb_body_id_of_slot(w, m->info.z),
             .point = { p->x, p->y, p->z }, .normal = n, .separation = p->w,
             .normal_impulse = j->w,
             .friction_impulse = { substeps * (j->y * t1.x + j->z * t2.x),

@@ -14,7 +14,9 @@ tb_result tb_plugins_init(tb_world* w)
     if (r) return r;
     tb_pipelines_bind(&w->pipelines, TB_BIND_PLUGIN_PARAMS, p->params_buffer.buffer);
     p->params_dirty = 1;
-    return tb_pipeline_create(&w->pipelines, "step/plugin_mark", 1, &p->mark);
+    r = tb_pipeline_create(&w->pipelines, "step/plugin_mark", 1, &p->mark);
+    if (!r) r = tb_pipeline_create(&w->pipelines, "narrowphase/events", TB_WORKGROUP_SIZE, &p->events);
+    return r;
 }
 
 void tb_plugins_destroy(tb_world* w)
@@ -25,11 +27,11 @@ void tb_plugins_destroy(tb_world* w)
                                                                         p->slots[i].generation });
     if (p->mark) vkDestroyPipeline(w->gpu.device, p->mark, NULL);
     tb_buffer_destroy(&w->memory, &p->params_buffer);
-    free(p->previous.pairs);
-    free(p->current.pairs);
-    free(p->begin.pairs);
-    free(p->end.pairs);
-    free(p->contacts);
+    if (p->events) vkDestroyPipeline(w->gpu.device, p->events, NULL);
+    tb_buffer_destroy(&w->memory, &p->event_buffer);
+    free(p->sorted);
+    free(p->begin.events);
+    free(p->end.events);
     memset(p, 0, sizeof *p);
 }
 

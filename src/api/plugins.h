@@ -30,11 +30,11 @@ typedef struct tb_plugin_record {
     unsigned char params[TB_PLUGIN_MAX_PARAM_BYTES];
 } tb_plugin_record;
 
-/// A pair in contact after a step call (the previous call's are compared with these).
-typedef struct tb_contact_pairs {
-    tb_contact_event* pairs;
+/// Contact events of one step, as the callbacks get them.
+typedef struct tb_event_list {
+    tb_contact_event* events;
     uint32_t count, capacity;
-} tb_contact_pairs;
+} tb_event_list;
 
 typedef struct tb_plugins {
     tb_plugin_record slots[TB_MAX_PLUGINS];
@@ -42,10 +42,12 @@ typedef struct tb_plugins {
     tb_buffer params_buffer;               ///< every slot's block, bound at TB_BIND_PLUGIN_PARAMS
     int params_dirty;
     VkPipeline mark;                       ///< step/plugin_mark
-    tb_contact_pairs previous, current;    ///< contact pairs of the last two step calls
-    tb_contact_pairs begin, end;           ///< this call's events
-    tb_contact* contacts;                  ///< read-back space
-    uint32_t contact_capacity;
+    VkPipeline events;                     ///< narrowphase/events
+    tb_buffer event_buffer;                ///< tb_gpu_contact_event[event_capacity]
+    uint32_t event_capacity;
+    tb_gpu_contact_event* sorted;          ///< a submission's events, sorted
+    uint32_t sorted_capacity;
+    tb_event_list begin, end;              ///< one step's, for the callbacks
 } tb_plugins;
 
 struct tb_world;
@@ -54,12 +56,20 @@ tb_result tb_plugins_init(struct tb_world* w);
 /// Unload every plugin and free everything.
 void tb_plugins_destroy(struct tb_world* w);
 
-/// Append the stages of `point`, each a stage of the graph, through `add_stage`.
+/// Append the stages of `point` to the step graph, each a stage of its own.
 tb_result tb_plugins_record(struct tb_world* w, tb_plugin_point point, tb_pass_list* list);
 /// Upload the parameter blocks if they changed (into the transfer recorded before a step).
 void tb_plugins_record_upload(struct tb_world* w, VkCommandBuffer cb);
-/// After a step call: contact events to the plugins that want them.
-tb_result tb_plugins_after_step(struct tb_world* w);
+
+/* contact_events.c */
+/// Does a loaded plugin want contact events?
+int tb_plugins_want_events(const struct tb_world* w);
+/// When one does: the stage that finds the step's events (narrowphase/events).
+tb_result tb_plugins_record_events(struct tb_world* w, tb_pass_list* list);
+/// After a submission: the events of its completed steps to the plugins, step by step.
+tb_result tb_plugins_deliver_events(struct tb_world* w, const tb_gpu_counters* counters);
+/// A step found more events than the buffer holds (TB_ABORT_EVENTS): make room for `need`.
+tb_result tb_plugins_grow_events(struct tb_world* w, uint32_t need);
 
 /// Check a stage's SPIR-V (`what` names it in the error).
 tb_result tb_plugin_check_spirv(tb_diag* diag, const char* what, const uint32_t* code, size_t size);

@@ -147,6 +147,14 @@ static void plugin_stages(builder* b, tb_plugin_point point)
     tb_pass_list_free(&b->list);
 }
 
+/* The contact events plugins' callbacks get, once the solver's impulses are final and before
+ * narrowphase/keep makes this step's manifolds last step's (src/api/contact_events.c). */
+static void contact_event_stage(builder* b)
+{
+    if (!b->r) b->r = tb_plugins_record_events(b->w, &b->list);
+    tb_pass_list_free(&b->list);
+}
+
 static void single(builder* b, tb_kernel k, tb_dispatch_rule rule, const char* name)
 {
     if (rule == TB_DISPATCH_PER_BODY) per_body(b, k, 0);
@@ -169,6 +177,7 @@ tb_result tb_step_build(tb_world* w)
     prepare_stage(&b);
     single(&b, TB_KERNEL_APPLY_FORCES, TB_DISPATCH_PER_BODY, "integrate/apply_forces");
     solve_stage(&b);
+    contact_event_stage(&b);
     single(&b, TB_KERNEL_KEEP_CONTACTS, TB_DISPATCH_INDIRECT, "narrowphase/keep");
     single(&b, TB_KERNEL_INTEGRATE, TB_DISPATCH_PER_BODY, "integrate/integrate");
     plugin_stages(&b, TB_PLUGIN_POST_SOLVE);

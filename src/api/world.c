@@ -282,6 +282,9 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
     tb_plugins_record_upload(w, t->cb);
     uint32_t no_abort = 0;   /* a step abandoned before is run again from here */
     vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, state), 4, &no_abort);
+    uint32_t no_events[2] = { 0, 0 };   /* the last submission's were delivered */
+    vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, events),
+                      sizeof no_events, no_events);
     if (shape_bytes) {
         void* dst = tb_transfer_upload(t, w->shape_buffer.buffer, 0, shape_bytes);
         if (dst) memcpy(dst, w->gpu_shapes, shape_bytes);
@@ -346,11 +349,12 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
         if (want > limit) want = limit;
         r = tb_sim_reserve_pairs(&w->sim, &w->transfer, (uint32_t)want);
     }
+    if (!r && (c->state.x & TB_ABORT_EVENTS)) r = tb_plugins_grow_events(w, c->events.x);
     if (!r && (c->state.x & TB_ABORT_COLOURS)) {
         uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
     }
-    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS)))
+    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS)))
         r = tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU abandoned a step for an unknown reason "
                     "(flags %#x)", c->state.x);
     w->step_built = 0;
@@ -387,8 +391,9 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     const tb_gpu_counters* c = tb_sim_counters(&w->sim);
     *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
     w->gpu_steps += *done;
-    if (c->state.x) r = grow_for(w, c);
-    else fit_colour_rounds(w, c);
+    r = tb_plugins_deliver_events(w, c);
+    if (!r && c->state.x) r = grow_for(w, c);
+    else if (!r) fit_colour_rounds(w, c);
     return r;
 }
 
@@ -412,7 +417,7 @@ tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
                            "buffer growths", MAX_REDO);
     }
     if (n) tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
-    return n ? tb_plugins_after_step(w) : TB_OK;
+    return TB_OK;
 }
 
 tb_result tb_world_step(tb_world* w, float dt)

@@ -165,6 +165,10 @@ tb_result tb_check_rotation(tb_diag* diag, tb_quat q, tb_quat* out, const char* 
 /* body.c / shape.c lookups: the record of a valid id, or an error and NULL. */
 tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r);
 tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
+/* contacts.c */
+/// The id of the live body in a slot; the null id for a dead or unused slot.
+tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot);
+
 /// Free a shape's hull geometry, if it has any.
 void tb_shape_release_hull(tb_shape_record* s);
 

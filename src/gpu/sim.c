@@ -19,7 +19,7 @@ static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
     [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
-    [TB_SIM_TAIL_SCRATCH] = UINT32_MAX,
+    [TB_SIM_TAIL_SCRATCH] = UINT32_MAX, [TB_SIM_EVENT_MARKS] = UINT32_MAX,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */

@@ -3,7 +3,8 @@
  *   step 12 begin 3:1 7:1 points 2 normal_impulse 0.25 friction_impulse 0 0 0.01
  *        point 0 0.5 0 normal 0 1 0
  *
- * (on one line; ids as index:generation). Lines go to the file named by the environment
+ * (on one line; ids as index:generation; per step, beginnings then ends, each in the
+ * order of the bodies' slots). Lines go to the file named by the environment
  * variable TB_CONTACT_LOG when the plugin loads (appended), else to standard output. Each
  * load gets its own tb_plugin and file, so several worlds may load it.
  */
