@@ -45,7 +45,8 @@ CXX        ?= g++
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early
-TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp
+TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
+                $(BUILD)/tests/plugins/count_events.so
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
@@ -168,6 +169,11 @@ $(BUILD)/tests/plugins/refused_%.so: tests/plugins/refused.c abi/tumble_plugin.h
 	$(call say,LD,$@)
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(PLUGIN_CFLAGS) -DREFUSED=REFUSED_$$(echo $* | tr a-z A-Z) -o $@ $<
+
+$(BUILD)/tests/plugins/count_events.so: tests/plugins/count_events.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
 
 $(BUILD)/tests/plugins/broken.comp: tests/plugins/broken.comp
 	@mkdir -p $(dir $@)
