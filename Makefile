@@ -188,7 +188,7 @@ $(BUILD)/tests/%: tests/%.cpp include/tumble.h abi/tumble_plugin.h $(BUILD)/libt
 $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(call say,LD,$@)
 	@mkdir -p $(dir $@)
-	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -DTB_BUILD_DIR='"$(abspath $(BUILD))"' -o $@ $< tests/harness.c $(TOOL_LINK) -lcmocka
+	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -DTB_BUILD_DIR='"$(abspath $(BUILD))"' -DTB_SOURCE_DIR='"$(CURDIR)"' -o $@ $< tests/harness.c $(TOOL_LINK) -lcmocka
 
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths,

@@ -439,6 +439,21 @@ TB_API tb_result tb_world_unload_plugin(tb_world* world, tb_plugin_id plugin);
 TB_API tb_result tb_world_set_plugin_param(tb_world* world, tb_plugin_id plugin, uint32_t offset,
                                            const void* data, uint32_t size);
 
+/* ---------------------------------------------------------------------------------------
+ * Shader hot-reload, while developing shaders
+ */
+
+/// Compile the step's shaders at run time from the GLSL tree at `dir` (laid out as the
+/// source's glsl/: <dir>/integrate/substep.comp, includes in <dir>/common) instead of the
+/// SPIR-V built into the library, and watch them: between steps, a shader written since the
+/// last step (or a file it includes) is compiled again, its pipeline swapped in and the step
+/// recorded again. A shader that does not compile keeps the pipeline it had (the built-in
+/// one at first) and its error, "file:line: error: message", goes to the log callback as a
+/// TB_LOG_ERROR; the world keeps stepping. Plugin stages given as GLSL are watched too.
+/// The environment variable TUMBLE_SHADER_DIR sets it when a world is created.
+/// NULL stops watching; the pipelines in use stay. Refused when `dir` is not a directory.
+TB_API tb_result tb_world_set_shader_dir(tb_world* world, const char* dir);
+
 #ifdef __cplusplus
 }
 #endif

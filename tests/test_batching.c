@@ -215,7 +215,7 @@ static void run_colouring(fixture* f, uint32_t pairs, uint32_t parity, uint32_t 
     for (uint32_t i = 0; i < list.count; i++)
         th_assert_ok(tb_pass_list_add(&all, &f->w->diag, &list.passes[i]));
     run_passes(f, &params, &all);
-    vkDestroyPipeline(f->w->gpu.device, forces.pipeline, NULL);
+    tb_pipeline_destroy(&f->w->pipelines, forces.pipeline);
     tb_pass_list_free(&all);
     tb_pass_list_free(&list);
 }
@@ -689,8 +689,8 @@ static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t ro
     params.soft = tb_contact_softness(f->w, DT / (float)substeps, 1.0);
     params.soft_static = tb_contact_softness(f->w, DT / (float)substeps, 2.0);
     run_passes(f, &params, &list);
-    vkDestroyPipeline(f->w->gpu.device, forces.pipeline, NULL);
-    vkDestroyPipeline(f->w->gpu.device, integrate.pipeline, NULL);
+    tb_pipeline_destroy(&f->w->pipelines, forces.pipeline);
+    tb_pipeline_destroy(&f->w->pipelines, integrate.pipeline);
     tb_pass_list_free(&list);
 }
 

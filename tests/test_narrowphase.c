@@ -145,8 +145,8 @@ static void rig_destroy(rig* r)
 {
     tb_world* w = r->w;
     vkDeviceWaitIdle(w->gpu.device);
-    vkDestroyPipeline(w->gpu.device, r->pipeline, NULL);
-    vkDestroyPipeline(w->gpu.device, r->hull_points, NULL);
+    tb_pipeline_destroy(&w->pipelines, r->pipeline);
+    tb_pipeline_destroy(&w->pipelines, r->hull_points);
     vkFreeCommandBuffers(w->gpu.device, w->gpu.command_pool, 1, &r->cb);
     for (int i = 0; i < BUF_COUNT; i++) tb_buffer_destroy(&w->memory, &r->dev[i]);
     tb_buffer_destroy(&w->memory, &r->up);

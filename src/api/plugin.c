@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "api/world.h"
-#include "gpu/glsl.h"
 
 #define PLUGIN_MIN_SIZE (offsetof(tb_plugin, stages) + sizeof(const tb_plugin_stage*))
 #define STAGE_MIN_SIZE (offsetof(tb_plugin_stage, glsl_path) + sizeof(const char*))
@@ -87,43 +86,40 @@ static tb_result check_stage(tb_world* w, const tb_plugin_stage* s, const char* 
 }
 
 /* A GLSL path relative to the plugin file's directory, compiled. */
-static tb_result compile_stage(tb_world* w, const char* plugin_path, const char* glsl_path,
-                               tb_spirv* out)
+/* A stage's GLSL path; a relative one is relative to the plugin's file. */
+static void stage_glsl_path(const char* plugin_path, const char* glsl_path, char* full,
+                            size_t size)
 {
-    char resolved[PATH_MAX], full[2 * PATH_MAX];
-    const char* path = glsl_path;
+    char resolved[PATH_MAX];
+    snprintf(full, size, "%s", glsl_path);
     if (glsl_path[0] != '/' && realpath(plugin_path, resolved)) {
         char* slash = strrchr(resolved, '/');
         if (slash) *slash = 0;
-        snprintf(full, sizeof full, "%s/%s", resolved, glsl_path);
-        path = full;
+        snprintf(full, size, "%s/%s", resolved, glsl_path);
     }
-    return tb_glsl_compile(&w->diag, path, NULL, 0, out);
 }
 
+/* SPIR-V is checked and built as given; GLSL is compiled, and hot-reload (a shader
+ * directory set) watches it like the step's own shaders. */
 static tb_result build_stage(tb_world* w, const char* path, const tb_plugin_stage* s,
                              tb_plugin_stage_record* rec)
 {
-    tb_spirv compiled = { 0 };
-    const uint32_t* code = s->spirv;
-    size_t size = s->spirv_size;
-    tb_result r = TB_OK;
-    if (!code) {
-        r = compile_stage(w, path, s->glsl_path, &compiled);
-        code = compiled.code;
-        size = compiled.size;
+    if (!s->spirv) {
+        char full[2 * PATH_MAX];
+        stage_glsl_path(path, s->glsl_path, full, sizeof full);
+        return tb_pipeline_create_glsl(&w->pipelines, rec->name, full, tb_plugin_check_spirv,
+                                       TB_WORKGROUP_SIZE, &rec->pipeline);
     }
-    if (!r) r = tb_plugin_check_spirv(&w->diag, rec->name, code, size);
-    if (!r) r = tb_pipeline_create_from(&w->pipelines, rec->name, code, size, TB_WORKGROUP_SIZE,
-                                        &rec->pipeline);
-    tb_spirv_free(&compiled);
+    tb_result r = tb_plugin_check_spirv(&w->diag, rec->name, s->spirv, s->spirv_size);
+    if (!r) r = tb_pipeline_create_from(&w->pipelines, rec->name, s->spirv, s->spirv_size,
+                                        TB_WORKGROUP_SIZE, &rec->pipeline);
     return r;
 }
 
 static void destroy_stages(tb_world* w, tb_plugin_record* p)
 {
     for (uint32_t i = 0; i < p->stage_count; i++)
-        if (p->stages[i].pipeline) vkDestroyPipeline(w->gpu.device, p->stages[i].pipeline, NULL);
+        tb_pipeline_destroy(&w->pipelines, p->stages[i].pipeline);
     p->stage_count = 0;
 }
 

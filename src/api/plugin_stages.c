@@ -25,9 +25,9 @@ void tb_plugins_destroy(tb_world* w)
     for (uint32_t i = 0; i < TB_MAX_PLUGINS; i++)
         if (p->slots[i].alive) tb_world_unload_plugin(w, (tb_plugin_id){ i + 1, w->serial,
                                                                         p->slots[i].generation });
-    if (p->mark) vkDestroyPipeline(w->gpu.device, p->mark, NULL);
+    tb_pipeline_destroy(&w->pipelines, p->mark);
     tb_buffer_destroy(&w->memory, &p->params_buffer);
-    if (p->events) vkDestroyPipeline(w->gpu.device, p->events, NULL);
+    tb_pipeline_destroy(&w->pipelines, p->events);
     tb_buffer_destroy(&w->memory, &p->event_buffer);
     free(p->sorted);
     free(p->begin.events);

@@ -38,7 +38,7 @@ tb_result tb_step_kernels_create(tb_world* w)
 void tb_step_kernels_destroy(tb_world* w)
 {
     for (int k = 0; k < TB_KERNEL_COUNT; k++)
-        if (w->kernels[k]) vkDestroyPipeline(w->gpu.device, w->kernels[k], NULL);
+        tb_pipeline_destroy(&w->pipelines, w->kernels[k]);
 }
 
 /* ---- pass helpers ---------------------------------------------------------------------- */

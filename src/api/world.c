@@ -85,6 +85,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     tb_result r = tb_gpu_create(&w->gpu, &options, &w->diag);
     if (!r) r = tb_memory_init(&w->memory, &w->gpu);
     if (!r) r = tb_pipelines_init(&w->pipelines, &w->gpu, def->pipeline_cache_path);
+    if (!r) r = tb_world_shader_dir_from_env(w);
     if (!r) r = tb_transfer_init(&w->transfer, &w->memory);
     if (!r) r = tb_graph_init(&w->graph, &w->gpu, &w->pipelines);
     if (!r) r = tb_buffer_create(&w->memory, sizeof(tb_gpu_params),
@@ -380,6 +381,7 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 /* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
 static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
 {
+    tb_world_reload_shaders(w);
     tb_result r = tb_world_prepare_shapes(w);
     if (!r && !w->step_built) r = tb_step_build(w);
     if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);

@@ -156,6 +156,12 @@ void tb_step_kernels_destroy(tb_world* w);
 /// Build the step graph for the current capacities and colouring rounds.
 tb_result tb_step_build(tb_world* w);
 
+/* shader_dir.c */
+/// TUMBLE_SHADER_DIR, when set, as tb_world_set_shader_dir (before any pipeline exists).
+tb_result tb_world_shader_dir_from_env(tb_world* w);
+/// Between steps: swap in the shaders written since the last step (hot-reload).
+void tb_world_reload_shaders(tb_world* w);
+
 /* checks.c */
 int tb_finite3(tb_vec3 v);
 int tb_finite_quat(tb_quat q);

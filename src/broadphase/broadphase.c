@@ -62,7 +62,7 @@ tb_result tb_broadphase_shared_create(tb_world* w)
 void tb_broadphase_destroy_pipelines(tb_world* w, const VkPipeline* pipelines, size_t count)
 {
     for (size_t i = 0; i < count; i++)
-        if (pipelines[i]) vkDestroyPipeline(w->gpu.device, pipelines[i], NULL);
+        tb_pipeline_destroy(&w->pipelines, pipelines[i]);
 }
 
 void tb_broadphase_shared_destroy(tb_world* w)

@@ -46,7 +46,7 @@ void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s)
     if (!s) return;
     VkPipeline all[] = { s->bounds, s->keys, s->pairs };
     tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
-    tb_lbvh_kernels_destroy(&s->build, w->gpu.device);
+    tb_lbvh_kernels_destroy(&s->build, &w->pipelines);
     free_arrays(w, s);
     tb_buffer_destroy(&w->memory, &s->scene);
     free(s);

@@ -12,10 +12,10 @@ tb_result tb_lbvh_kernels_create(tb_lbvh_kernels* k, tb_pipelines* pipelines)
     return r;
 }
 
-void tb_lbvh_kernels_destroy(tb_lbvh_kernels* k, VkDevice device)
+void tb_lbvh_kernels_destroy(tb_lbvh_kernels* k, tb_pipelines* pipelines)
 {
-    if (k->hierarchy) vkDestroyPipeline(device, k->hierarchy, NULL);
-    if (k->refit) vkDestroyPipeline(device, k->refit, NULL);
+    tb_pipeline_destroy(pipelines, k->hierarchy);
+    tb_pipeline_destroy(pipelines, k->refit);
     k->hierarchy = k->refit = VK_NULL_HANDLE;
 }
 

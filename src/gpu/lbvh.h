@@ -22,7 +22,7 @@ typedef struct tb_lbvh_kernels {
 } tb_lbvh_kernels;
 
 tb_result tb_lbvh_kernels_create(tb_lbvh_kernels* k, tb_pipelines* pipelines);
-void tb_lbvh_kernels_destroy(tb_lbvh_kernels* k, VkDevice device);
+void tb_lbvh_kernels_destroy(tb_lbvh_kernels* k, tb_pipelines* pipelines);
 
 /// Bytes of the node array for `capacity` items (internal nodes, then leaves).
 VkDeviceSize tb_lbvh_node_bytes(uint32_t capacity);

@@ -140,6 +140,7 @@ tb_result tb_pipelines_init(tb_pipelines* p, tb_gpu* gpu, const char* cache_path
     memset(p, 0, sizeof *p);
     p->gpu = gpu;
     p->cache_path = cache_path;
+    p->watch.fd = -1;
     tb_result r = create_layouts(p);
     if (!r) r = create_set(p);
     if (!r) r = create_cache(p);
@@ -151,6 +152,10 @@ void tb_pipelines_destroy(tb_pipelines* p)
     VkDevice device = p->gpu ? p->gpu->device : VK_NULL_HANDLE;
     if (!device) return;
     if (p->cache) save_cache(p);
+    for (uint32_t i = 0; i < p->source_count; i++) tb_pipeline_source_free(&p->sources[i]);
+    free(p->sources);
+    free(p->shader_dir);
+    tb_watch_close(&p->watch);
     vkDestroyPipelineCache(device, p->cache, NULL);
     vkDestroyDescriptorPool(device, p->descriptor_pool, NULL);
     vkDestroyPipelineLayout(device, p->layout, NULL);
@@ -158,12 +163,81 @@ void tb_pipelines_destroy(tb_pipelines* p)
     memset(p, 0, sizeof *p);
 }
 
+/* ---- the sources of pipelines ---------------------------------------------------------- */
+
+static tb_pipeline_source* add_source(tb_pipelines* p, const char* name, const char* glsl_path,
+                                      tb_spirv_check* check, uint32_t workgroup_size,
+                                      VkPipeline* slot)
+{
+    if (p->source_count == p->source_capacity) {
+        uint32_t capacity = p->source_capacity ? 2 * p->source_capacity : 64;
+        tb_pipeline_source* grown = realloc(p->sources, capacity * sizeof *grown);
+        if (!grown) return NULL;
+        p->sources = grown;
+        p->source_capacity = capacity;
+    }
+    tb_pipeline_source* s = &p->sources[p->source_count];
+    *s = (tb_pipeline_source){ .slot = slot, .workgroup_size = workgroup_size, .check = check };
+    s->name = strdup(name);
+    s->glsl_path = glsl_path ? strdup(glsl_path) : NULL;
+    if (!s->name || (glsl_path && !s->glsl_path)) {
+        tb_pipeline_source_free(s);
+        return NULL;
+    }
+    p->source_count++;
+    return s;
+}
+
+static void remove_source(tb_pipelines* p, uint32_t i)
+{
+    tb_pipeline_source_free(&p->sources[i]);
+    p->sources[i] = p->sources[--p->source_count];
+}
+
+void tb_pipeline_source_free(tb_pipeline_source* s)
+{
+    for (uint32_t i = 0; i < s->file_count; i++) free(s->files[i]);
+    free(s->files);
+    free(s->name);
+    free(s->glsl_path);
+    memset(s, 0, sizeof *s);
+}
+
+static tb_result create_with_source(tb_pipelines* p, const char* name, const char* glsl_path,
+                                    tb_spirv_check* check, uint32_t workgroup_size,
+                                    VkPipeline* out)
+{
+    *out = VK_NULL_HANDLE;
+    tb_pipeline_source* s = add_source(p, name, glsl_path, check, workgroup_size, out);
+    if (!s) return tb_fail(p->gpu->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    tb_result r = tb_pipeline_source_build(p, s, out);
+    if (r) remove_source(p, (uint32_t)(s - p->sources));
+    else s->pipeline = *out;
+    return r;
+}
+
 tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
                              VkPipeline* out)
 {
-    const tb_shader_blob* blob = tb_shader_find(shader);
-    if (!blob) return tb_fail(p->gpu->diag, TB_ERROR_DEVICE, "no embedded shader named %s", shader);
-    return tb_pipeline_create_from(p, shader, blob->code, blob->size, workgroup_size, out);
+    return create_with_source(p, shader, NULL, NULL, workgroup_size, out);
+}
+
+tb_result tb_pipeline_create_glsl(tb_pipelines* p, const char* name, const char* path,
+                                  tb_spirv_check* check, uint32_t workgroup_size,
+                                  VkPipeline* out)
+{
+    return create_with_source(p, name, path, check, workgroup_size, out);
+}
+
+void tb_pipeline_destroy(tb_pipelines* p, VkPipeline pipeline)
+{
+    if (!pipeline) return;
+    for (uint32_t i = 0; i < p->source_count; i++)
+        if (p->sources[i].pipeline == pipeline) {
+            remove_source(p, i);
+            break;
+        }
+    vkDestroyPipeline(p->gpu->device, pipeline, NULL);
 }
 
 tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint32_t* code,

@@ -137,10 +137,9 @@ tb_result tb_prims_init(tb_prims* prims, tb_pipelines* pipelines)
 void tb_prims_destroy(tb_prims* prims)
 {
     if (!prims->pipelines) return;
-    VkDevice device = prims->pipelines->gpu->device;
     for (size_t i = 0; i < PIPELINE_COUNT; i++) {
         VkPipeline* p = pipeline_slot(prims, &PIPELINES[i]);
-        if (*p) vkDestroyPipeline(device, *p, NULL);
+        tb_pipeline_destroy(prims->pipelines, *p);
         *p = VK_NULL_HANDLE;
     }
     prims->pipelines = NULL;

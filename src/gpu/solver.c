@@ -42,7 +42,7 @@ void tb_solver_destroy(tb_solver* s)
     if (!s->pipelines) return;
     for (size_t k = 0; k < KERNEL_COUNT; k++) {
         VkPipeline* p = pipeline_at(s, kernels[k].field);
-        if (*p) vkDestroyPipeline(s->pipelines->gpu->device, *p, NULL);
+        tb_pipeline_destroy(s->pipelines, *p);
     }
     memset(s, 0, sizeof *s);
 }
