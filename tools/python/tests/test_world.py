@@ -2,6 +2,7 @@
 a pile scene driven from Python, a million transforms read into numpy in one call, errors
 as exceptions. Every world must end without a validation message."""
 import os
+import shutil
 import sys
 
 import numpy as np
@@ -117,3 +118,27 @@ def test_blast_plugin_from_python(make_world):
     blast.unload()
     with pytest.raises(tumble.TumbleError):
         blast.unload()
+
+
+def test_shader_hot_reload(make_world, tmp_path):
+    """A copy of glsl/ runs the step; scaling gravity in its substep shader doubles the fall
+    of a ball from the next step on, without a new world."""
+    source = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "glsl")
+    shaders = tmp_path / "glsl"
+    shutil.copytree(source, shaders)
+    world = make_world()
+    world.set_shader_dir(shaders)
+    ball = world.add_bodies(world.sphere(0.5), np.array([[0.0, 100.0, 0.0]]))
+    world.step(1 / 60)
+    fall = world.velocity(ball, 0)[0][1]
+    assert np.isclose(fall, -9.81 / 60, rtol=1e-3)
+    substep = shaders / "integrate" / "substep.comp"
+    text = substep.read_text()
+    term = "params.gravity.xyz * (s.angular.w * h)"
+    assert term in text
+    substep.write_text(text.replace(term, "params.gravity.xyz * (2.0 * s.angular.w * h)"))
+    world.step(1 / 60)
+    assert np.isclose(world.velocity(ball, 0)[0][1], fall + 2 * fall, rtol=1e-3)
+    with pytest.raises(tumble.TumbleError, match="not a readable directory"):
+        world.set_shader_dir(tmp_path / "missing")
+    world.set_shader_dir(None)

@@ -216,6 +216,12 @@ class World:
         self._check(lib.tb_world_load_plugin(self._w, os.fsencode(path), out))
         return Plugin(self, out[0])
 
+    def set_shader_dir(self, path):
+        """Run the step's shaders from the GLSL tree at `path` and reload them when they
+        change (shader hot-reload; None stops watching). Compile errors go to the log."""
+        self._check(lib.tb_world_set_shader_dir(
+            self._w, ffi.NULL if path is None else os.fsencode(path)))
+
     # ---- stepping and stats ---------------------------------------------------------------
 
     def step(self, dt=1.0 / 60.0, n=1):
