@@ -194,15 +194,6 @@ static void remove_source(tb_pipelines* p, uint32_t i)
     p->sources[i] = p->sources[--p->source_count];
 }
 
-void tb_pipeline_source_free(tb_pipeline_source* s)
-{
-    for (uint32_t i = 0; i < s->file_count; i++) free(s->files[i]);
-    free(s->files);
-    free(s->name);
-    free(s->glsl_path);
-    memset(s, 0, sizeof *s);
-}
-
 static tb_result create_with_source(tb_pipelines* p, const char* name, const char* glsl_path,
                                     tb_spirv_check* check, uint32_t workgroup_size,
                                     VkPipeline* out)

@@ -31,6 +31,23 @@ static uint64_t hash_code(const uint32_t* code, size_t size)
     return h;
 }
 
+/* The source no longer knows what it was compiled from. */
+static void forget_files(tb_pipeline_source* s)
+{
+    for (uint32_t i = 0; i < s->file_count; i++) free(s->files[i]);
+    free(s->files);
+    s->files = NULL;
+    s->file_count = 0;
+}
+
+void tb_pipeline_source_free(tb_pipeline_source* s)
+{
+    forget_files(s);
+    free(s->name);
+    free(s->glsl_path);
+    memset(s, 0, sizeof *s);
+}
+
 static void watch_files(tb_pipelines* p, const tb_pipeline_source* s)
 {
     for (uint32_t i = 0; i < s->file_count; i++)
@@ -41,8 +58,7 @@ static void watch_files(tb_pipelines* p, const tb_pipeline_source* s)
 /* The files a compile read become the source's, and are watched. */
 static void keep_files(tb_pipelines* p, tb_pipeline_source* s, tb_spirv* spirv)
 {
-    for (uint32_t i = 0; i < s->file_count; i++) free(s->files[i]);
-    free(s->files);
+    forget_files(s);
     s->files = spirv->files;
     s->file_count = spirv->file_count;
     spirv->files = NULL;
@@ -206,14 +222,8 @@ static tb_result start_watching(tb_pipelines* p, const char* dir)
     if (!copy) return tb_fail(p->gpu->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     free(p->shader_dir);
     p->shader_dir = copy;
-    for (uint32_t i = 0; i < p->source_count; i++) {
-        tb_pipeline_source* s = &p->sources[i];
-        if (s->glsl_path) continue;
-        for (uint32_t f = 0; f < s->file_count; f++) free(s->files[f]);
-        free(s->files);
-        s->files = NULL;
-        s->file_count = 0;
-    }
+    for (uint32_t i = 0; i < p->source_count; i++)
+        if (!p->sources[i].glsl_path) forget_files(&p->sources[i]);
     tb_watch_close(&p->watch);
     if (!tb_watch_open(&p->watch))
         tb_log(p->gpu->diag, TB_LOG_WARNING, "shader reload: no inotify instance; shaders are "

@@ -4,8 +4,6 @@
 #define _GNU_SOURCE
 #include "gpu/watch.h"
 
-#include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
