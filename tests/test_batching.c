@@ -18,8 +18,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
-#include "gpu/solver.h"
+#include "world/world.h"
+#include "solver/solver.h"
 
 #define DT (1.0f / 60.0f)
 

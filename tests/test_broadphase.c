@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 #include "broadphase/isap.h"
 
 typedef struct pair { uint32_t a, b; } pair;

@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 #include "gpu/graph.h"
 
 #define MARGIN 0.02f

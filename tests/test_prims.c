@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 #include "gpu/prims.h"
 
 /* ---- a rig: a world's device, the primitives, and mirrored buffers --------------------- */

@@ -6,7 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 /* A million spheres on a 100^3 lattice in free fall: created by one tb_body_create_many,
  * stepped, and read back by one tb_world_read_transforms. Every body falls alike. */

@@ -5,7 +5,7 @@
 
 #include <cglm/cglm.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r)
 {

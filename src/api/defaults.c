@@ -1,7 +1,7 @@
 /* Every default in one place. A def that did not come from here lacks the cookie. */
 #include <math.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 tb_world_def tb_default_world_def(void)
 {

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define PI 3.14159265358979323846
 

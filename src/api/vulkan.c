@@ -1,7 +1,7 @@
 /* The Vulkan interop calls of include/tumble_vulkan.h. */
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 #include "tumble_vulkan.h"
 
 tb_result tb_world_create_vulkan(const tb_world_def* def, const tb_vulkan_extensions* ext,

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <strings.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 /* The library's choice for TB_BROADPHASE_DEFAULT (README, performance): the LBVH was the
  * fastest on every pile of 100k and 1M bodies measured, mixed sizes included, and within

@@ -6,7 +6,7 @@
 
 #include <stdlib.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 typedef struct grid_state {
     VkPipeline assign, ranges, pairs;

@@ -20,7 +20,7 @@
 
 #include <stdlib.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define CONTROL_BYTES 256   /* the control, rounded up */
 /* C99's static assertion: the array size is negative unless the control fits its room. */

@@ -18,8 +18,8 @@
 
 #include <stdlib.h>
 
-#include "api/world.h"
-#include "gpu/lbvh.h"
+#include "world/world.h"
+#include "broadphase/lbvh_build.h"
 
 struct tb_lbvh_search {
     VkPipeline bounds, keys, pairs;

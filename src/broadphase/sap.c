@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 /* One buffer per TB_SAP_* address, in that order. */
 enum { SAP_BUFFERS = TB_SAP_ADDRESSES };

@@ -3,7 +3,7 @@
 #define TB_DEVICE_H
 
 #include <vulkan/vulkan.h>
-#include "api/diag.h"
+#include "base/diag.h"
 
 typedef struct tb_gpu {
     VkInstance instance;

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "api/diag.h"
+#include "base/diag.h"
 
 /// A header every run-time compilation can include: abi/tumble_plugin.glsl and
 /// glsl/common/layout.h, embedded in the library at build time (build/glsl_headers.c).

@@ -9,7 +9,7 @@
  * primitive; with --passes 1 also the median of every pass of the sort and the scan.
  * Uses the library's internals (src/), like the tests.
  */
-#include "api/world.h"
+#include "world/world.h"
 #include "gpu/prims.h"
 
 #include <stdio.h>

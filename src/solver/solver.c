@@ -1,5 +1,5 @@
 /* Pipelines and pass lists of the contact solver. */
-#include "gpu/solver.h"
+#include "solver/solver.h"
 
 #include <stddef.h>
 #include <string.h>

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define INITIAL_VECTORS 256u
 #define INITIAL_TOPOLOGY 1024u

@@ -10,7 +10,7 @@
  * after step/begin, post-broadphase after the pairs, post-solve and post-step after
  * integration.
  */
-#include "api/world.h"
+#include "world/world.h"
 
 typedef struct kernel_def { const char* shader; uint32_t workgroup; } kernel_def;
 

@@ -1,5 +1,5 @@
 /* The step's GPU-only buffers: creation, growth, binding. */
-#include "gpu/sim.h"
+#include "world/sim.h"
 
 #include <string.h>
 

@@ -3,7 +3,7 @@
 #include <spirv-tools/libspirv.h>
 #include <string.h>
 
-#include "api/plugins.h"
+#include "plugin/plugin.h"
 
 #define SPIRV_MAGIC 0x07230203u
 #define OP_ENTRY_POINT 15u

@@ -2,7 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define PARAMS_BYTES (TB_MAX_PLUGINS * TB_PLUGIN_PARAM_VEC4S * 16)
 

@@ -1,7 +1,7 @@
 /* Argument checks shared by the API calls. */
 #include <math.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define ROTATION_TOLERANCE 1e-3f
 

@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define DEFAULT_MAX_BODIES (1u << 24)
 #define DEFAULT_MAX_SHAPES (1u << 20)

@@ -1,5 +1,5 @@
 /* Linear BVH build: the two passes and their push constants (see gpu/lbvh.h). */
-#include "gpu/lbvh.h"
+#include "broadphase/lbvh_build.h"
 
 #include <string.h>
 

@@ -1,7 +1,7 @@
 /* Reading the last step's contacts back from the GPU. */
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot)
 {

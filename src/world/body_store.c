@@ -1,5 +1,5 @@
 /* Body arrays on the GPU and their host mirror. */
-#include "gpu/bodies.h"
+#include "world/body_store.h"
 
 #include <stdlib.h>
 #include <string.h>

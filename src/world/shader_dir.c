@@ -1,7 +1,7 @@
 /* Shader hot-reload through the API (the work is src/gpu/reload.c's). */
 #include <stdlib.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 tb_result tb_world_set_shader_dir(tb_world* w, const char* dir)
 {

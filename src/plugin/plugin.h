@@ -3,7 +3,7 @@
 #ifndef TB_PLUGINS_H
 #define TB_PLUGINS_H
 
-#include "api/diag.h"
+#include "base/diag.h"
 #include "gpu/graph.h"
 #include "gpu/memory.h"
 #include "layout.h"

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "api/world.h"
+#include "world/world.h"
 
 #define PLUGIN_MIN_SIZE (offsetof(tb_plugin, stages) + sizeof(const tb_plugin_stage*))
 #define STAGE_MIN_SIZE (offsetof(tb_plugin_stage, glsl_path) + sizeof(const char*))

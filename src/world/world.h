@@ -2,17 +2,17 @@
 #ifndef TB_WORLD_H
 #define TB_WORLD_H
 
-#include "api/diag.h"
-#include "api/plugins.h"
+#include "base/diag.h"
+#include "plugin/plugin.h"
 #include "broadphase/broadphase.h"
 #include "geom/hull.h"
-#include "gpu/bodies.h"
+#include "world/body_store.h"
 #include "gpu/graph.h"
 #include "gpu/memory.h"
 #include "gpu/pipeline.h"
 #include "gpu/prims.h"
-#include "gpu/sim.h"
-#include "gpu/solver.h"
+#include "world/sim.h"
+#include "solver/solver.h"
 #include "gpu/transfer.h"
 #include "layout.h"
 #include "tumble.h"
