@@ -3,6 +3,7 @@
 #   make deps       install missing Debian packages
 #   make test       build and run the tests on lavapipe with the validation layers on
 #   make abi-check  compare libtumble.so with the ABI baseline in abi/ (part of make test)
+#   make check-layers  the include arrows of src/ run one way (DESIGN.md §2; part of make test)
 #   make run        install, build, run the default scene
 #   make bench SCENE=freefall N=100000 STEPS=200 [BROADPHASE=grid|sap|lbvh|isap]
 #              [FRAMES=dir EVERY=k CONTACTS=1]
@@ -55,7 +56,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break check-python
+.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -195,7 +196,7 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 # both at once (a test keeps about one core busy); their outputs follow each other.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
 TEST_LOGS := $(BUILD)/test-logs
-test: deps all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme abi-check check-abi-break check-python
+test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme abi-check check-abi-break check-python
 	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
@@ -238,6 +239,12 @@ PYTHON ?= /usr/bin/python3
 check-python: $(BUILD)/libtumble.so
 	$(call say,PYTEST,tools/python)
 	$(Q)env $(TEST_ENV) TUMBLE_LIBRARY=$(abspath $(BUILD))/libtumble.so $(PYTHON) -m pytest -q -p no:cacheprovider tools/python
+
+# The include arrows of the C core (api -> world -> stages -> gpu -> base, geom -> base),
+# each folder's main header, and tools kept to the public headers: tools/check-layers.
+check-layers:
+	$(call say,CHECK,layers)
+	$(Q)sh tools/check-layers
 
 # Only tb_* symbols may leave the shared library.
 check-exports: $(BUILD)/libtumble.so

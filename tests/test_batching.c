@@ -686,8 +686,9 @@ static void solver_step(fixture* f, uint32_t pairs, uint32_t parity, uint32_t ro
     params.counts.z = substeps;
     params.capacity.w = iterations;
     params.contact = (tb_gpu_vec4){ 0.02f, THRESHOLD, PUSH_SPEED, 0 };
-    params.soft = tb_contact_softness(f->w, DT / (float)substeps, 1.0);
-    params.soft_static = tb_contact_softness(f->w, DT / (float)substeps, 2.0);
+    tb_solver_contact contact = { f->w->contact_hertz, f->w->contact_damping_ratio };
+    params.soft = tb_solver_softness(&contact, DT / (float)substeps, 1.0);
+    params.soft_static = tb_solver_softness(&contact, DT / (float)substeps, 2.0);
     run_passes(f, &params, &list);
     tb_pipeline_destroy(&f->w->pipelines, forces.pipeline);
     tb_pipeline_destroy(&f->w->pipelines, integrate.pipeline);

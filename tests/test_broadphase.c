@@ -299,7 +299,7 @@ static void test_moving_over_many_steps(void** state)
 /* The incremental sort and sweep's counts of searches run incrementally and from scratch. */
 static tb_gpu_uvec4 isap_stats(tb_world* w)
 {
-    const tb_isap_state* s = w->broadphase_state;
+    const tb_isap_state* s = w->bp.state;
     tb_transfer* t = &w->transfer;
     th_assert_ok(tb_transfer_begin(t, 64));
     const tb_gpu_uvec4* stats = tb_transfer_download(t, s->state.buffer, TB_ISAP_CONTROL_OFFSET +

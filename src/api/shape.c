@@ -1,33 +1,13 @@
-/* Shapes: geometry + material, mass properties per unit mass, the GPU shape table. */
+/* Shapes through the API: checks, geometry and mass properties per unit mass; the world
+ * keeps them (src/world/shapes.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/checks.h"
 #include "world/world.h"
 
 #define PI 3.14159265358979323846
-
-tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r)
-{
-    if (!w) {
-        *r = TB_ERROR_INVALID_ARGUMENT;
-        return NULL;
-    }
-    if (id.index1 == 0 || id.world != w->serial || id.index1 > w->shape_slots.used) {
-        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ID, "shape id {%u, %u, %u} does not name a shape "
-                     "of this world", id.index1, id.world, id.generation);
-        return NULL;
-    }
-    tb_shape_record* s = &w->shapes[id.index1 - 1];
-    if (!s->alive || s->generation != id.generation) {
-        *r = tb_fail(&w->diag, TB_ERROR_STALE_ID, "shape id {%u, %u, %u} is stale: the shape was "
-                     "destroyed", id.index1, id.world, id.generation);
-        return NULL;
-    }
-    *slot = id.index1 - 1;
-    *r = TB_OK;
-    return s;
-}
 
 static tb_result check_material(tb_world* w, const tb_shape_def* def, tb_shape_id* out)
 {
@@ -45,46 +25,6 @@ static tb_result check_material(tb_world* w, const tb_shape_def* def, tb_shape_i
     if (!isfinite(def->restitution) || def->restitution < 0 || def->restitution > 1)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "restitution must be in [0, 1], not %g",
                        (double)def->restitution);
-    return TB_OK;
-}
-
-static tb_result grow_shape_table(tb_world* w, uint32_t needed)
-{
-    if (needed <= w->shape_table_capacity) return TB_OK;
-    uint32_t cap = w->shape_table_capacity ? w->shape_table_capacity * 2 : 16;
-    while (cap < needed) cap *= 2;
-    tb_shape_record* records = realloc(w->shapes, cap * sizeof *records);
-    if (records) w->shapes = records;
-    tb_gpu_shape* gpu = realloc(w->gpu_shapes, cap * sizeof *gpu);
-    if (gpu) w->gpu_shapes = gpu;
-    if (!records || !gpu) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    uint32_t old = w->shape_table_capacity;
-    memset(w->shapes + old, 0, (cap - old) * sizeof *records);
-    memset(w->gpu_shapes + old, 0, (cap - old) * sizeof *gpu);
-    w->shape_table_capacity = cap;
-    return TB_OK;
-}
-
-/* Take a slot and fill both the host record and the GPU entry. */
-static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_gpu_shape* gpu,
-                           tb_shape_id* out)
-{
-    if (w->shape_slots.live >= w->max_shapes)
-        return tb_fail(&w->diag, TB_ERROR_CAPACITY, "the world holds at most %u shapes "
-                       "(tb_world_def.max_shapes)", w->max_shapes);
-    if (!w->shape_slots.free_count && grow_shape_table(w, w->shape_slots.used + 1))
-        return TB_ERROR_OUT_OF_MEMORY;
-    uint32_t slot;
-    tb_slots_take(&w->shape_slots, &slot);
-    uint16_t generation = (uint16_t)(w->shapes[slot].generation + 1);
-    w->shapes[slot] = *record;
-    w->shapes[slot].generation = generation ? generation : 1;
-    w->shapes[slot].alive = 1;
-    w->gpu_shapes[slot] = *gpu;
-    w->gpu_shapes[slot].material = (tb_gpu_vec4){ record->material.friction,
-                                                  record->material.restitution, 0.0f, 0.0f };
-    w->shapes_dirty = 1;
-    *out = (tb_shape_id){ slot + 1, w->serial, w->shapes[slot].generation };
     return TB_OK;
 }
 
@@ -112,16 +52,7 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
     rec.unit_inertia = (tb_vec3){ (float)(0.4 * r2), (float)(0.4 * r2), (float)(0.4 * r2) };
     tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_SPHERE, (tb_vec3){ radius, radius, radius },
                                  (tb_gpu_vec4){ radius, 0, 0, 0 });
-    return add_shape(w, &rec, &gpu, out);
-}
-
-/* The step records the narrowphase's hull pass only while hull shapes exist (see step.c):
- * the first hull to come or the last to go rebuilds it. */
-static void count_hull_shape(tb_world* w, int change)
-{
-    uint32_t before = w->hull_shapes;
-    w->hull_shapes = (uint32_t)((int64_t)before + change);
-    if ((before == 0) != (w->hull_shapes == 0)) w->step_built = 0;
+    return tb_shapes_add(w, &rec, &gpu, out);
 }
 
 /* Hulls (boxes too) own their geometry; the hull table packs it for the GPU. */
@@ -134,22 +65,7 @@ static tb_result add_hull_shape(tb_world* w, tb_shape_record* rec, tb_gpu_shape*
         return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     }
     *rec->hull = *hull;
-    tb_result r = add_shape(w, rec, gpu, out);
-    if (r) {
-        tb_shape_release_hull(rec);
-        return r;
-    }
-    w->hulls.dirty = 1;
-    if (rec->type == TB_SHAPE_HULL) count_hull_shape(w, +1);
-    return TB_OK;
-}
-
-void tb_shape_release_hull(tb_shape_record* s)
-{
-    if (!s->hull) return;
-    tb_hull_free(s->hull);
-    free(s->hull);
-    s->hull = NULL;
+    return tb_shapes_add(w, rec, gpu, out);
 }
 
 tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, tb_shape_id* out)
@@ -215,7 +131,7 @@ tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n,
     tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_PLANE, (tb_vec3){ big, big, big },
                                  (tb_gpu_vec4){ (float)(n.x / len), (float)(n.y / len),
                                                 (float)(n.z / len), offset });
-    return add_shape(w, &rec, &gpu, out);
+    return tb_shapes_add(w, &rec, &gpu, out);
 }
 
 tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
@@ -227,11 +143,7 @@ tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
     if (s->users)
         return tb_fail(&w->diag, TB_ERROR_IN_USE, "shape is used by %u bodies; destroy them first",
                        s->users);
-    s->alive = 0;
-    if (s->hull) w->hulls.dirty = 1;
-    if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
-    tb_shape_release_hull(s);
-    tb_slots_give(&w->shape_slots, slot);
+    tb_shapes_remove(w, slot);
     return TB_OK;
 }
 

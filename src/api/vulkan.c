@@ -1,6 +1,7 @@
 /* The Vulkan interop calls of include/tumble_vulkan.h. */
 #include <string.h>
 
+#include "api/api.h"
 #include "world/world.h"
 #include "tumble_vulkan.h"
 
@@ -14,7 +15,7 @@ tb_result tb_world_create_vulkan(const tb_world_def* def, const tb_vulkan_extens
         extra.device_extensions = ext->device_extensions;
         extra.device_extension_count = ext->device_extension_count;
     }
-    return tb_world_create_with(def, &extra, out);
+    return tb_api_world_create(def, &extra, out);
 }
 
 tb_result tb_world_vulkan_device(const tb_world* w, tb_vulkan_device* out)
@@ -48,12 +49,9 @@ tb_result tb_world_vulkan_contacts(tb_world* w, tb_vulkan_contacts* out)
 {
     if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
     memset(out, 0, sizeof *out);
-    uint32_t pairs = w->gpu_steps ? tb_sim_counters(&w->sim)->state.z : 0;
-    out->manifolds = w->sim.pair[TB_SIM_MANIFOLDS].buffer;
+    tb_world_contact_buffer(w, &out->manifolds, &out->count, &out->size);
     out->offset = 0;
-    out->count = pairs <= w->sim.pair_capacity ? pairs : 0;
     out->stride = sizeof(tb_gpu_manifold);
     out->generation = w->buffer_generation;
-    out->size = w->sim.pair[TB_SIM_MANIFOLDS].size;
     return TB_OK;
 }

@@ -1,7 +1,7 @@
 /* Argument checks shared by the API calls. */
 #include <math.h>
 
-#include "world/world.h"
+#include "base/checks.h"
 
 #define ROTATION_TOLERANCE 1e-3f
 

@@ -49,19 +49,3 @@ const char* tb_diag_create_error(void)
 {
     return create_error;
 }
-
-const char* tb_result_string(tb_result result)
-{
-    switch (result) {
-    case TB_OK: return "success";
-    case TB_ERROR_INVALID_ARGUMENT: return "invalid argument";
-    case TB_ERROR_INVALID_ID: return "invalid id";
-    case TB_ERROR_STALE_ID: return "stale id (the object was destroyed)";
-    case TB_ERROR_CAPACITY: return "capacity exhausted";
-    case TB_ERROR_OUT_OF_MEMORY: return "out of memory";
-    case TB_ERROR_NO_DEVICE: return "no suitable Vulkan device";
-    case TB_ERROR_DEVICE: return "Vulkan device error";
-    case TB_ERROR_IN_USE: return "object in use";
-    default: return "unknown result code";
-    }
-}

@@ -1,6 +1,6 @@
 /* Errors and log messages: every failure becomes one sentence and a tb_result. */
-#ifndef TB_DIAG_H
-#define TB_DIAG_H
+#ifndef TB_BASE_DIAG_H
+#define TB_BASE_DIAG_H
 
 #include <stdint.h>
 #include "tumble.h"

@@ -1,7 +1,7 @@
 /* Slot tables: indices handed out densely, reused last-in first-out after release. */
 #include <stdlib.h>
 
-#include "world/world.h"
+#include "base/slots.h"
 
 tb_result tb_slots_take(tb_slots* slots, uint32_t* out)
 {

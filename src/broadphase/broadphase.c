@@ -6,8 +6,6 @@
 #include <string.h>
 #include <strings.h>
 
-#include "world/world.h"
-
 /* The library's choice for TB_BROADPHASE_DEFAULT (README, performance): the LBVH was the
  * fastest on every pile of 100k and 1M bodies measured, mixed sizes included, and within
  * 0.12 ms of the best at 10k; no scene makes it degrade as mixed sizes do the grid and
@@ -53,22 +51,26 @@ tb_result tb_broadphase_resolve(tb_diag* diag, tb_broadphase asked, tb_broadphas
                    "grid, sap, lbvh or isap", env);
 }
 
-tb_result tb_broadphase_shared_create(tb_world* w)
+tb_result tb_broadphase_shared_create(tb_broadphase_ctx* bp)
 {
-    return tb_pipeline_create(&w->pipelines, "broadphase/pair_check", TB_WORKGROUP_SIZE,
-                              &w->pair_check);
+    tb_result r = tb_pipeline_create(bp->kit.pipelines, "broadphase/world_aabb",
+                                     TB_WORKGROUP_SIZE, &bp->world_aabb);
+    if (!r) r = tb_pipeline_create(bp->kit.pipelines, "broadphase/pair_check",
+                                   TB_WORKGROUP_SIZE, &bp->pair_check);
+    return r;
 }
 
-void tb_broadphase_destroy_pipelines(tb_world* w, const VkPipeline* pipelines, size_t count)
+void tb_broadphase_destroy_pipelines(tb_broadphase_ctx* bp, const VkPipeline* pipelines, size_t count)
 {
     for (size_t i = 0; i < count; i++)
-        tb_pipeline_destroy(&w->pipelines, pipelines[i]);
+        tb_pipeline_destroy(bp->kit.pipelines, pipelines[i]);
 }
 
-void tb_broadphase_shared_destroy(tb_world* w)
+void tb_broadphase_shared_destroy(tb_broadphase_ctx* bp)
 {
-    tb_broadphase_destroy_pipelines(w, &w->pair_check, 1);
-    w->pair_check = VK_NULL_HANDLE;
+    VkPipeline shared[] = { bp->world_aabb, bp->pair_check };
+    tb_broadphase_destroy_pipelines(bp, shared, 2);
+    bp->world_aabb = bp->pair_check = VK_NULL_HANDLE;
 }
 
 tb_pass tb_broadphase_pass(VkPipeline pipeline, tb_dispatch_rule rule, uint32_t groups,
@@ -87,53 +89,43 @@ tb_pass tb_broadphase_pass(VkPipeline pipeline, tb_dispatch_rule rule, uint32_t 
     return pass;
 }
 
-tb_result tb_broadphase_add(tb_world* w, tb_pass_list* list, VkPipeline pipeline,
+tb_result tb_broadphase_add(tb_broadphase_ctx* bp, tb_pass_list* list, VkPipeline pipeline,
                             tb_dispatch_rule rule, uint32_t groups, tb_gpu_ptr indirect,
                             const tb_gpu_broadphase_push* push)
 {
     tb_pass pass = tb_broadphase_pass(pipeline, rule, groups, indirect, push);
-    return tb_pass_list_add(list, &w->diag, &pass);
+    return tb_pass_list_add(list, bp->kit.diag, &pass);
 }
 
-tb_result tb_broadphase_record_pair_output(tb_world* w, tb_pass_list* list,
+tb_result tb_broadphase_record_world_aabb(tb_broadphase_ctx* bp, tb_pass_list* list,
+                                          VkBuffer counters)
+{
+    tb_pass pass = tb_pass_with_args(bp->world_aabb, TB_DISPATCH_PER_BODY, counters, 0, 0, 0, 0);
+    return tb_pass_list_add(list, bp->kit.diag, &pass);
+}
+
+tb_result tb_broadphase_record_pair_output(tb_broadphase_ctx* bp, tb_pass_list* list,
                                            const tb_broadphase_search* search)
 {
-    tb_sim* sim = &w->sim;
-    tb_gpu_ptr slots = tb_broadphase_slots(w);
-    tb_gpu_ptr total = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, state) + 8);
-    tb_gpu_ptr counts = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_PAIR_COUNT], 0);
-    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
-    tb_pass check = tb_pass_with_args(w->pair_check, TB_DISPATCH_FIXED, VK_NULL_HANDLE, 0, 0, 0, 0);
+    const tb_broadphase_io* io = &bp->io;
+    tb_gpu_ptr counts = io->body_pair_counts;
+    tb_pass check = tb_pass_with_args(bp->pair_check, TB_DISPATCH_FIXED, VK_NULL_HANDLE, 0, 0, 0, 0);
     tb_result r = TB_OK;
     for (uint32_t i = 0; i < search->n && !r; i++)
-        r = tb_pass_list_add(list, &w->diag, &search->counts[i]);
-    if (!r) r = tb_prims_scan(&w->prims, list, counts, counts, slots, sim->body_capacity, total,
-                              scratch);
-    if (!r) r = tb_pass_list_add(list, &w->diag, &check);
+        r = tb_pass_list_add(list, bp->kit.diag, &search->counts[i]);
+    if (!r) r = tb_prims_scan(bp->kit.prims, list, counts, counts, io->slots, io->body_capacity,
+                              io->pair_count, io->scratch);
+    if (!r) r = tb_pass_list_add(list, bp->kit.diag, &check);
     for (uint32_t i = 0; i < search->n && !r; i++)
-        r = tb_pass_list_add(list, &w->diag, &search->writes[i]);
+        r = tb_pass_list_add(list, bp->kit.diag, &search->writes[i]);
     return r;
 }
 
-tb_result tb_broadphase_buffer(tb_world* w, VkDeviceSize bytes, tb_buffer* out)
+tb_result tb_broadphase_buffer(tb_broadphase_ctx* bp, VkDeviceSize bytes, tb_buffer* out)
 {
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                      VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
-    return tb_buffer_create(&w->memory, bytes, usage, 0, out);
-}
-
-tb_result tb_broadphase_clear(tb_world* w, const tb_buffer* buffer)
-{
-    tb_result r = tb_transfer_begin(&w->transfer, 0);
-    if (r) return r;
-    vkCmdFillBuffer(w->transfer.cb, buffer->buffer, 0, VK_WHOLE_SIZE, 0);
-    r = tb_transfer_end(&w->transfer);
-    return r ? r : tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
-}
-
-tb_gpu_ptr tb_broadphase_slots(tb_world* w)
-{
-    return tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, grid) + 8);
+    return tb_buffer_create(bp->kit.memory, bytes, usage, 0, out);
 }

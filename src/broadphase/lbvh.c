@@ -5,7 +5,7 @@
  *   lbvh_keys        a Morton code per body in those bounds; large static bodies (wider
  *                    than the scene of centres) and dead slots get keys after every code
  *   sort             (key, slot) by 31 bits: leaves, then large bodies, then dead slots
- *   build            Karras' hierarchy, then the bottom-up refit (gpu/lbvh.h)
+ *   build            Karras' hierarchy, then the bottom-up refit (lbvh_build.h)
  *   lbvh_pairs       the search (the step's pair output runs it to count, then write): each
  *                    leaf walks the leaves after it, each dynamic body the large ones
  *
@@ -18,7 +18,6 @@
 
 #include <stdlib.h>
 
-#include "world/world.h"
 #include "broadphase/lbvh_build.h"
 
 struct tb_lbvh_search {
@@ -31,55 +30,55 @@ struct tb_lbvh_search {
 };
 typedef tb_lbvh_search lbvh_state;
 
-static void free_arrays(tb_world* w, lbvh_state* s)
+static void free_arrays(tb_broadphase_ctx* bp, lbvh_state* s)
 {
-    tb_buffer_destroy(&w->memory, &s->keys_buf);
-    tb_buffer_destroy(&w->memory, &s->values);
-    tb_buffer_destroy(&w->memory, &s->nodes);
-    tb_buffer_destroy(&w->memory, &s->links);
-    tb_buffer_destroy(&w->memory, &s->cache);
+    tb_buffer_destroy(bp->kit.memory, &s->keys_buf);
+    tb_buffer_destroy(bp->kit.memory, &s->values);
+    tb_buffer_destroy(bp->kit.memory, &s->nodes);
+    tb_buffer_destroy(bp->kit.memory, &s->links);
+    tb_buffer_destroy(bp->kit.memory, &s->cache);
     s->capacity = 0;
 }
 
-void tb_lbvh_search_destroy(tb_world* w, tb_lbvh_search* s)
+void tb_lbvh_search_destroy(tb_broadphase_ctx* bp, tb_lbvh_search* s)
 {
     if (!s) return;
     VkPipeline all[] = { s->bounds, s->keys, s->pairs };
-    tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
-    tb_lbvh_kernels_destroy(&s->build, &w->pipelines);
-    free_arrays(w, s);
-    tb_buffer_destroy(&w->memory, &s->scene);
+    tb_broadphase_destroy_pipelines(bp, all, sizeof all / sizeof all[0]);
+    tb_lbvh_kernels_destroy(&s->build, bp->kit.pipelines);
+    free_arrays(bp, s);
+    tb_buffer_destroy(bp->kit.memory, &s->scene);
     free(s);
 }
 
-tb_result tb_lbvh_search_create(tb_world* w, tb_lbvh_search** out)
+tb_result tb_lbvh_search_create(tb_broadphase_ctx* bp, tb_lbvh_search** out)
 {
     lbvh_state* s = calloc(1, sizeof *s);
     *out = s;
-    if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    tb_pipelines* p = &w->pipelines;
+    if (!s) return tb_fail(bp->kit.diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    tb_pipelines* p = bp->kit.pipelines;
     tb_result r = tb_pipeline_create(p, "broadphase/lbvh_bounds", TB_WORKGROUP_SIZE, &s->bounds);
     if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_keys", TB_WORKGROUP_SIZE, &s->keys);
     if (!r) r = tb_pipeline_create(p, "broadphase/lbvh_pairs", TB_WORKGROUP_SIZE, &s->pairs);
     if (!r) r = tb_lbvh_kernels_create(&s->build, p);
     /* The bounds start empty (all zero); after that every step leaves them so. */
-    if (!r) r = tb_broadphase_buffer(w, sizeof(tb_gpu_lbvh_bounds), &s->scene);
-    if (!r) r = tb_broadphase_clear(w, &s->scene);
+    if (!r) r = tb_broadphase_buffer(bp, sizeof(tb_gpu_lbvh_bounds), &s->scene);
+    if (!r) r = tb_gpu_kit_clear(&bp->kit, &s->scene);
     return r;
 }
 
 /* Nothing in the arrays outlives a step, so growth replaces them. */
-tb_result tb_lbvh_search_reserve(tb_world* w, tb_lbvh_search* s, uint32_t capacity)
+tb_result tb_lbvh_search_reserve(tb_broadphase_ctx* bp, tb_lbvh_search* s, uint32_t capacity)
 {
     if (capacity <= s->capacity) return TB_OK;
-    free_arrays(w, s);
+    free_arrays(bp, s);
     VkDeviceSize per_body = (VkDeviceSize)(capacity ? capacity : 1) * sizeof(uint32_t);
-    tb_result r = tb_broadphase_buffer(w, per_body, &s->keys_buf);
-    if (!r) r = tb_broadphase_buffer(w, per_body, &s->values);
-    if (!r) r = tb_broadphase_buffer(w, tb_lbvh_node_bytes(capacity), &s->nodes);
-    if (!r) r = tb_broadphase_buffer(w, tb_lbvh_link_bytes(capacity), &s->links);
-    if (!r) r = tb_broadphase_buffer(w, per_body * TB_LBVH_CACHED_PAIRS, &s->cache);
-    if (r) free_arrays(w, s);
+    tb_result r = tb_broadphase_buffer(bp, per_body, &s->keys_buf);
+    if (!r) r = tb_broadphase_buffer(bp, per_body, &s->values);
+    if (!r) r = tb_broadphase_buffer(bp, tb_lbvh_node_bytes(capacity), &s->nodes);
+    if (!r) r = tb_broadphase_buffer(bp, tb_lbvh_link_bytes(capacity), &s->links);
+    if (!r) r = tb_broadphase_buffer(bp, per_body * TB_LBVH_CACHED_PAIRS, &s->cache);
+    if (r) free_arrays(bp, s);
     else s->capacity = capacity;
     return r;
 }
@@ -100,16 +99,16 @@ static tb_gpu_broadphase_push body_push(const lbvh_state* s, uint32_t mode, tb_g
     return push;
 }
 
-static tb_lbvh_build build_of(tb_world* w, const lbvh_state* s, tb_gpu_ptr slots, tb_gpu_ptr skip)
+static tb_lbvh_build build_of(tb_broadphase_ctx* bp, const lbvh_state* s, tb_gpu_ptr slots, tb_gpu_ptr skip)
 {
     tb_lbvh_build b = {
         .capacity = s->capacity,
         .keys = ptr_of(&s->keys_buf), .items = ptr_of(&s->values), .count = slots,
         .skip = skip.address ? skip
-                             : tb_gpu_ptr_of(&w->sim.counters, offsetof(tb_gpu_counters, state)),
+                             : bp->io.abandoned,
         .nodes = ptr_of(&s->nodes), .links = ptr_of(&s->links),
-        .box_min = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MIN]),
-        .box_max = ptr_of(&w->store.gpu[TB_ARRAY_AABB_MAX]),
+        .box_min = bp->io.aabb_min,
+        .box_max = bp->io.aabb_max,
         .rule = TB_DISPATCH_PER_BODY,
     };
     return b;
@@ -121,22 +120,21 @@ static uint32_t bounds_groups(uint32_t capacity)
     return groups < 1 ? 1 : groups > TB_LBVH_BOUNDS_GROUPS ? TB_LBVH_BOUNDS_GROUPS : groups;
 }
 
-tb_result tb_lbvh_search_record(tb_world* w, tb_lbvh_search* s, tb_pass_list* list,
+tb_result tb_lbvh_search_record(tb_broadphase_ctx* bp, tb_lbvh_search* s, tb_pass_list* list,
                                 tb_gpu_ptr count, tb_gpu_ptr skip, tb_pass* count_pass,
                                 tb_pass* write_pass)
 {
-    tb_sim* sim = &w->sim;
-    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    tb_gpu_ptr scratch = bp->io.scratch;
     tb_gpu_ptr none = { 0 };
     tb_gpu_broadphase_push counting = body_push(s, TB_BROADPHASE_COUNT, skip);
     tb_gpu_broadphase_push writing = body_push(s, TB_BROADPHASE_WRITE, skip);
-    tb_lbvh_build build = build_of(w, s, count, skip);
-    tb_result r = tb_broadphase_add(w, list, s->bounds, TB_DISPATCH_FIXED,
+    tb_lbvh_build build = build_of(bp, s, count, skip);
+    tb_result r = tb_broadphase_add(bp, list, s->bounds, TB_DISPATCH_FIXED,
                                     bounds_groups(s->capacity), none, &counting);
-    if (!r) r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &counting);
-    if (!r) r = tb_prims_sort(&w->prims, list, ptr_of(&s->keys_buf), ptr_of(&s->values), count,
-                              sim->body_capacity, TB_LBVH_SORT_BITS, scratch);
-    if (!r) r = tb_lbvh_record_build(&s->build, list, &w->diag, &build);
+    if (!r) r = tb_broadphase_add(bp, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &counting);
+    if (!r) r = tb_prims_sort(bp->kit.prims, list, ptr_of(&s->keys_buf), ptr_of(&s->values), count,
+                              bp->io.body_capacity, TB_LBVH_SORT_BITS, scratch);
+    if (!r) r = tb_lbvh_record_build(&s->build, list, bp->kit.diag, &build);
     *count_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &counting);
     *write_pass = tb_broadphase_pass(s->pairs, TB_DISPATCH_PER_BODY, 0, none, &writing);
     return r;
@@ -144,32 +142,32 @@ tb_result tb_lbvh_search_record(tb_world* w, tb_lbvh_search* s, tb_pass_list* li
 
 /* ---- the lbvh broadphase: the search every step, never skipped ---------------------------- */
 
-static tb_result lbvh_create(tb_world* w)
+static tb_result lbvh_create(tb_broadphase_ctx* bp)
 {
     tb_lbvh_search* s = NULL;
-    tb_result r = tb_lbvh_search_create(w, &s);
-    w->broadphase_state = s;
+    tb_result r = tb_lbvh_search_create(bp, &s);
+    bp->state = s;
     return r;
 }
 
-static tb_result lbvh_reserve(tb_world* w, uint32_t capacity)
+static tb_result lbvh_reserve(tb_broadphase_ctx* bp, uint32_t capacity)
 {
-    return tb_lbvh_search_reserve(w, w->broadphase_state, capacity);
+    return tb_lbvh_search_reserve(bp, bp->state, capacity);
 }
 
-static tb_result lbvh_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
+static tb_result lbvh_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadphase_search* search)
 {
-    tb_gpu_ptr slots = tb_broadphase_slots(w);
+    tb_gpu_ptr slots = bp->io.slots;
     tb_gpu_ptr none = { 0 };
     search->n = 1;
-    return tb_lbvh_search_record(w, w->broadphase_state, list, slots, none, &search->counts[0],
+    return tb_lbvh_search_record(bp, bp->state, list, slots, none, &search->counts[0],
                                  &search->writes[0]);
 }
 
-static void lbvh_destroy(tb_world* w)
+static void lbvh_destroy(tb_broadphase_ctx* bp)
 {
-    tb_lbvh_search_destroy(w, w->broadphase_state);
-    w->broadphase_state = NULL;
+    tb_lbvh_search_destroy(bp, bp->state);
+    bp->state = NULL;
 }
 
 const tb_broadphase_ops tb_broadphase_lbvh = {

@@ -10,8 +10,8 @@
  *                                     bottom-up (the second child to arrive goes on)
  * Every operand is a device address (push constants), as for the parallel primitives.
  */
-#ifndef TB_LBVH_H
-#define TB_LBVH_H
+#ifndef TB_BROADPHASE_LBVH_BUILD_H
+#define TB_BROADPHASE_LBVH_BUILD_H
 
 #include "gpu/graph.h"
 #include "gpu/prims.h"

@@ -14,8 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "world/world.h"
-
 /* One buffer per TB_SAP_* address, in that order. */
 enum { SAP_BUFFERS = TB_SAP_ADDRESSES };
 
@@ -24,28 +22,28 @@ typedef struct sap_state {
     tb_buffer buffers[SAP_BUFFERS];
 } sap_state;
 
-static void release_buffers(tb_world* w, sap_state* s)
+static void release_buffers(tb_broadphase_ctx* bp, sap_state* s)
 {
-    for (int b = 0; b < SAP_BUFFERS; b++) tb_buffer_destroy(&w->memory, &s->buffers[b]);
+    for (int b = 0; b < SAP_BUFFERS; b++) tb_buffer_destroy(bp->kit.memory, &s->buffers[b]);
 }
 
-static void sap_destroy(tb_world* w)
+static void sap_destroy(tb_broadphase_ctx* bp)
 {
-    sap_state* s = w->broadphase_state;
+    sap_state* s = bp->state;
     if (!s) return;
     VkPipeline all[] = { s->keys, s->gather, s->sweep };
-    tb_broadphase_destroy_pipelines(w, all, sizeof all / sizeof all[0]);
-    release_buffers(w, s);
+    tb_broadphase_destroy_pipelines(bp, all, sizeof all / sizeof all[0]);
+    release_buffers(bp, s);
     free(s);
-    w->broadphase_state = NULL;
+    bp->state = NULL;
 }
 
-static tb_result sap_create(tb_world* w)
+static tb_result sap_create(tb_broadphase_ctx* bp)
 {
     sap_state* s = calloc(1, sizeof *s);
-    if (!s) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    w->broadphase_state = s;
-    tb_pipelines* p = &w->pipelines;
+    if (!s) return tb_fail(bp->kit.diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    bp->state = s;
+    tb_pipelines* p = bp->kit.pipelines;
     tb_result r = tb_pipeline_create(p, "broadphase/sap_keys", TB_WORKGROUP_SIZE, &s->keys);
     if (!r) r = tb_pipeline_create(p, "broadphase/sap_gather", TB_WORKGROUP_SIZE, &s->gather);
     if (!r) r = tb_pipeline_create(p, "broadphase/sap_sweep", TB_WORKGROUP_SIZE, &s->sweep);
@@ -69,15 +67,15 @@ static VkDeviceSize buffer_bytes(int index, uint32_t capacity)
 /* Only the header's axis outlives a step, so growing the buffers is replacing them. The
  * world grows the sim's buffers first, which waits for the device, so no step still uses
  * ours. */
-static tb_result sap_reserve(tb_world* w, uint32_t capacity)
+static tb_result sap_reserve(tb_broadphase_ctx* bp, uint32_t capacity)
 {
-    sap_state* s = w->broadphase_state;
-    release_buffers(w, s);
+    sap_state* s = bp->state;
+    release_buffers(bp, s);
     tb_result r = TB_OK;
     for (int b = 0; b < SAP_BUFFERS && !r; b++)
-        r = tb_broadphase_buffer(w, buffer_bytes(b, capacity), &s->buffers[b]);
+        r = tb_broadphase_buffer(bp, buffer_bytes(b, capacity), &s->buffers[b]);
     /* A zero header: the first step sweeps along x (then each step chooses the next's). */
-    return r ? r : tb_broadphase_clear(w, &s->buffers[TB_SAP_HEADER]);
+    return r ? r : tb_gpu_kit_clear(&bp->kit, &s->buffers[TB_SAP_HEADER]);
 }
 
 static tb_gpu_ptr buffer_ptr(const sap_state* s, int index, VkDeviceSize offset)
@@ -96,20 +94,19 @@ static tb_gpu_broadphase_push push_of(const sap_state* s, uint32_t mode)
     return push;
 }
 
-static tb_result sap_record(tb_world* w, tb_pass_list* list, tb_broadphase_search* search)
+static tb_result sap_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadphase_search* search)
 {
-    sap_state* s = w->broadphase_state;
-    tb_sim* sim = &w->sim;
-    tb_gpu_ptr slots = tb_broadphase_slots(w);
-    tb_gpu_ptr scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0);
+    sap_state* s = bp->state;
+    tb_gpu_ptr slots = bp->io.slots;
+    tb_gpu_ptr scratch = bp->io.scratch;
     tb_gpu_ptr none = { 0 };
     tb_gpu_broadphase_push count = push_of(s, TB_BROADPHASE_COUNT);
     tb_gpu_broadphase_push write = push_of(s, TB_BROADPHASE_WRITE);
-    uint32_t cap = sim->body_capacity;
-    tb_result r = tb_broadphase_add(w, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
-    if (!r) r = tb_prims_sort(&w->prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
+    uint32_t cap = bp->io.body_capacity;
+    tb_result r = tb_broadphase_add(bp, list, s->keys, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_prims_sort(bp->kit.prims, list, buffer_ptr(s, TB_SAP_KEYS, 0),
                               buffer_ptr(s, TB_SAP_ORDER, 0), slots, cap, 32, scratch);
-    if (!r) r = tb_broadphase_add(w, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
+    if (!r) r = tb_broadphase_add(bp, list, s->gather, TB_DISPATCH_PER_BODY, 0, none, &count);
     search->counts[0] = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &count);
     search->writes[0] = tb_broadphase_pass(s->sweep, TB_DISPATCH_PER_BODY, 0, none, &write);
     search->n = 1;

@@ -1,15 +1,8 @@
-/* The GPU hull table: the hull data of every live hull and box shape, packed into the two
- * buffers bound at TB_BIND_HULL_VECTORS and TB_BIND_HULL_TOPOLOGY (layout in layout.h).
- *
- * Shapes are few and change rarely next to bodies, so any change marks the table dirty and
- * the next upload packs every live hull again, in slot order, rewriting each shape's
- * locator (tb_gpu_shape.hull). The buffers grow to the next power of two when the packed
- * data outgrows them; that replaces a binding, so the step is recorded again.
- */
+/* The GPU hull table (narrowphase.h): every live hull and box shape's geometry, packed. */
 #include <stdlib.h>
 #include <string.h>
 
-#include "world/world.h"
+#include "narrowphase/narrowphase.h"
 
 #define INITIAL_VECTORS 256u
 #define INITIAL_TOPOLOGY 1024u
@@ -25,72 +18,72 @@ static uint32_t hull_topology_count(const tb_hull* h)
     return 2 * h->edge_count + h->face_count + h->index_count;
 }
 
-static tb_result create_buffer(tb_world* w, uint32_t binding, VkDeviceSize bytes, tb_buffer* buf)
+static tb_result create_buffer(tb_narrowphase* np, uint32_t binding, VkDeviceSize bytes,
+                               tb_buffer* buf, int* replaced)
 {
-    tb_buffer_destroy(&w->memory, buf);
-    tb_result r = tb_buffer_create(&w->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+    tb_buffer_destroy(np->kit.memory, buf);
+    tb_result r = tb_buffer_create(np->kit.memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, buf);
     if (r) return r;
-    tb_pipelines_bind(&w->pipelines, binding, buf->buffer);
-    tb_graph_invalidate(&w->graph);
-    w->buffer_generation++;
+    tb_pipelines_bind(np->kit.pipelines, binding, buf->buffer);
+    tb_graph_invalidate(np->kit.graph);
+    *replaced = 1;
     return TB_OK;
 }
 
 /* One host image and its GPU buffer, doubled until they hold `needed` elements of `size`
  * bytes. The host image is as large as the buffer, so packing never reallocates twice. */
-static tb_result grow_array(tb_world* w, uint32_t binding, uint32_t needed, size_t size,
-                            void** host, uint32_t* capacity, tb_buffer* buffer)
+static tb_result grow_array(tb_narrowphase* np, uint32_t binding, uint32_t needed, size_t size,
+                            void** host, uint32_t* capacity, tb_buffer* buffer, int* replaced)
 {
     if (needed <= *capacity) return TB_OK;
     uint32_t cap = *capacity;
     while (cap < needed) cap *= 2;
     void* grown = realloc(*host, (size_t)cap * size);
-    if (!grown) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    if (!grown) return tb_fail(np->kit.diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
     *host = grown;
-    tb_result r = create_buffer(w, binding, (VkDeviceSize)cap * size, buffer);
+    tb_result r = create_buffer(np, binding, (VkDeviceSize)cap * size, buffer, replaced);
     if (!r) *capacity = cap;
     return r;
 }
 
-static tb_result grow(tb_world* w, uint32_t vectors, uint32_t topology)
+static tb_result grow(tb_narrowphase* np, uint32_t vectors, uint32_t topology, int* replaced)
 {
-    tb_hull_table* t = &w->hulls;
+    tb_hull_table* t = &np->hulls;
     void* v = t->vectors;
     void* o = t->topology;
-    tb_result r = grow_array(w, TB_BIND_HULL_VECTORS, vectors, sizeof *t->vectors, &v,
-                             &t->vector_capacity, &t->vector_buffer);
+    tb_result r = grow_array(np, TB_BIND_HULL_VECTORS, vectors, sizeof *t->vectors, &v,
+                             &t->vector_capacity, &t->vector_buffer, replaced);
     t->vectors = v;
-    if (!r) r = grow_array(w, TB_BIND_HULL_TOPOLOGY, topology, sizeof *t->topology, &o,
-                           &t->topology_capacity, &t->topology_buffer);
+    if (!r) r = grow_array(np, TB_BIND_HULL_TOPOLOGY, topology, sizeof *t->topology, &o,
+                           &t->topology_capacity, &t->topology_buffer, replaced);
     t->topology = o;
     return r;
 }
 
-tb_result tb_hull_table_init(tb_world* w)
+static tb_result hull_table_init(tb_narrowphase* np, int* replaced)
 {
-    tb_hull_table* t = &w->hulls;
+    tb_hull_table* t = &np->hulls;
     t->vector_capacity = INITIAL_VECTORS / 2;
     t->topology_capacity = INITIAL_TOPOLOGY / 2;
     t->dirty = 1;
-    return grow(w, INITIAL_VECTORS, INITIAL_TOPOLOGY);
+    return grow(np, INITIAL_VECTORS, INITIAL_TOPOLOGY, replaced);
 }
 
-void tb_hull_table_destroy(tb_world* w)
+static void hull_table_destroy(tb_narrowphase* np)
 {
-    tb_hull_table* t = &w->hulls;
-    tb_buffer_destroy(&w->memory, &t->vector_buffer);
-    tb_buffer_destroy(&w->memory, &t->topology_buffer);
+    tb_hull_table* t = &np->hulls;
+    tb_buffer_destroy(np->kit.memory, &t->vector_buffer);
+    tb_buffer_destroy(np->kit.memory, &t->topology_buffer);
     free(t->vectors);
     free(t->topology);
     memset(t, 0, sizeof *t);
 }
 
 /* Write one hull at the given bases and point its shape at it. */
-static void pack_hull(tb_world* w, const tb_hull* h, uint32_t vbase, uint32_t tbase,
+static void pack_hull(tb_hull_table* t, const tb_hull* h, uint32_t vbase, uint32_t tbase,
                       tb_gpu_shape* shape)
 {
-    tb_hull_table* t = &w->hulls;
     for (uint32_t i = 0; i < h->vertex_count; i++)
         t->vectors[vbase + i] = (tb_gpu_vec4){ h->vertices[i][0], h->vertices[i][1],
                                                h->vertices[i][2], 0.0f };
@@ -115,45 +108,44 @@ static void pack_hull(tb_world* w, const tb_hull* h, uint32_t vbase, uint32_t tb
     shape->hull = (tb_gpu_uvec4){ vbase, pbase, tbase, fbase };
 }
 
-tb_result tb_hull_table_prepare(tb_world* w)
+tb_result tb_hull_table_prepare(tb_narrowphase* np, const tb_hull_shapes* shapes, int* replaced)
 {
-    tb_hull_table* t = &w->hulls;
+    tb_hull_table* t = &np->hulls;
     if (!t->dirty) return TB_OK;
     uint32_t vectors = 0, topology = 0;
-    for (uint32_t s = 0; s < w->shape_slots.used; s++) {
-        const tb_shape_record* rec = &w->shapes[s];
-        if (!rec->alive || !rec->hull) continue;
-        vectors += hull_vector_count(rec->hull);
-        topology += hull_topology_count(rec->hull);
+    for (uint32_t s = 0; s < shapes->count; s++) {
+        const tb_hull* h = shapes->hull_at(shapes->owner, s);
+        if (!h) continue;
+        vectors += hull_vector_count(h);
+        topology += hull_topology_count(h);
     }
-    tb_result r = grow(w, vectors, topology);
+    tb_result r = grow(np, vectors, topology, replaced);
     if (r) return r;
     uint32_t vbase = 0, tbase = 0;
-    for (uint32_t s = 0; s < w->shape_slots.used; s++) {
-        const tb_shape_record* rec = &w->shapes[s];
-        if (!rec->alive || !rec->hull) continue;
-        pack_hull(w, rec->hull, vbase, tbase, &w->gpu_shapes[s]);
-        vbase += hull_vector_count(rec->hull);
-        tbase += hull_topology_count(rec->hull);
+    for (uint32_t s = 0; s < shapes->count; s++) {
+        const tb_hull* h = shapes->hull_at(shapes->owner, s);
+        if (!h) continue;
+        pack_hull(t, h, vbase, tbase, &shapes->gpu_shapes[s]);
+        vbase += hull_vector_count(h);
+        tbase += hull_topology_count(h);
     }
     t->vectors_used = vectors;
     t->topology_used = topology;
     t->dirty = 0;
     t->upload = 1;
-    w->shapes_dirty = 1;
     return TB_OK;
 }
 
-VkDeviceSize tb_hull_table_upload_bytes(const tb_world* w)
+VkDeviceSize tb_hull_table_upload_bytes(const tb_narrowphase* np)
 {
-    const tb_hull_table* t = &w->hulls;
+    const tb_hull_table* t = &np->hulls;
     if (!t->upload) return 0;
     return t->vectors_used * sizeof(tb_gpu_vec4) + t->topology_used * sizeof(uint32_t);
 }
 
-void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer)
+void tb_hull_table_record_upload(tb_narrowphase* np, tb_transfer* transfer)
 {
-    tb_hull_table* t = &w->hulls;
+    tb_hull_table* t = &np->hulls;
     if (!t->upload) return;
     VkDeviceSize vbytes = t->vectors_used * sizeof(tb_gpu_vec4);
     VkDeviceSize tbytes = t->topology_used * sizeof(uint32_t);
@@ -162,4 +154,50 @@ void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer)
     dst = tbytes ? tb_transfer_upload(transfer, t->topology_buffer.buffer, 0, tbytes) : NULL;
     if (dst) memcpy(dst, t->topology, tbytes);
     t->upload = 0;
+}
+
+/* ---- the narrowphase's passes ------------------------------------------------------------ */
+
+tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced)
+{
+    np->kit = *kit;
+    tb_pipelines* p = kit->pipelines;
+    tb_result r = tb_pipeline_create(p, "narrowphase/contacts", TB_WORKGROUP_SIZE, &np->contacts);
+    if (!r) r = tb_pipeline_create(p, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
+                                   &np->hull_points);
+    if (!r) r = tb_pipeline_create(p, "narrowphase/keep", TB_WORKGROUP_SIZE, &np->keep);
+    if (!r) r = hull_table_init(np, replaced);
+    return r;
+}
+
+void tb_narrowphase_destroy(tb_narrowphase* np)
+{
+    if (!np->kit.pipelines) return;
+    tb_pipeline_destroy(np->kit.pipelines, np->contacts);
+    tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
+    tb_pipeline_destroy(np->kit.pipelines, np->keep);
+    hull_table_destroy(np);
+    memset(np, 0, sizeof *np);
+}
+
+static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeline pipeline,
+                          VkBuffer counters)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
+                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0);
+    return tb_pass_list_add(list, np->kit.diag, &pass);
+}
+
+tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
+                                         VkBuffer counters, int hull_shapes)
+{
+    tb_result r = per_pair(np, list, np->contacts, counters);
+    if (!r && hull_shapes) r = per_pair(np, list, np->hull_points, counters);
+    return r;
+}
+
+tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
+                                     VkBuffer counters)
+{
+    return per_pair(np, list, np->keep, counters);
 }

@@ -1,11 +1,17 @@
-/* Plugins loaded into a world (abi/tumble_plugin.h): their stages, parameter blocks and the
- * contact events their callbacks get. */
-#ifndef TB_PLUGINS_H
-#define TB_PLUGINS_H
+/* Plugins loaded into a world (abi/tumble_plugin.h): loading and checking them, their
+ * stages in the step, their parameter blocks and the contact events their callbacks get.
+ *
+ * Reads, at the plugin points of the step (pre-step, post-broadphase, post-solve,
+ * post-step): whatever the plugins' stages read of the body arrays, pairs and step
+ * parameters (abi/tumble_plugin.glsl); writes what they write and the parameter blocks
+ * (binding TB_BIND_PLUGIN_PARAMS). The world finds each step's contact events and hands
+ * them to the plugins that want them (src/world/events.c). The plugins see the world only
+ * through tb_plugin_host and the buffers of tb_plugins_io.
+ */
+#ifndef TB_PLUGIN_PLUGIN_H
+#define TB_PLUGIN_PLUGIN_H
 
-#include "base/diag.h"
-#include "gpu/graph.h"
-#include "gpu/memory.h"
+#include "gpu/gpu.h"
 #include "layout.h"
 #include "tumble_plugin.h"
 
@@ -30,46 +36,52 @@ typedef struct tb_plugin_record {
     unsigned char params[TB_PLUGIN_MAX_PARAM_BYTES];
 } tb_plugin_record;
 
-/// Contact events of one step, as the callbacks get them.
-typedef struct tb_event_list {
-    tb_contact_event* events;
-    uint32_t count, capacity;
-} tb_event_list;
+/// What plugins see of the world that loads them.
+typedef struct tb_plugin_host {
+    tb_gpu_kit kit;
+    tb_world* world;             ///< handed to the callbacks, never looked into
+    uint16_t serial;             ///< the world's, in plugin ids
+} tb_plugin_host;
+
+/// The step's buffers the plugins' passes use (they move when they grow).
+typedef struct tb_plugins_io {
+    VkBuffer counters;           ///< bound at TB_BIND_COUNTERS (per-pair dispatch)
+} tb_plugins_io;
 
 typedef struct tb_plugins {
+    tb_plugin_host host;
     tb_plugin_record slots[TB_MAX_PLUGINS];
     uint32_t stage_total;
     tb_buffer params_buffer;               ///< every slot's block, bound at TB_BIND_PLUGIN_PARAMS
     int params_dirty;
     VkPipeline mark;                       ///< step/plugin_mark
-    VkPipeline events;                     ///< narrowphase/events
-    tb_buffer event_buffer;                ///< tb_gpu_contact_event[event_capacity]
-    uint32_t event_capacity;
-    tb_gpu_contact_event* sorted;          ///< a submission's events, sorted
-    uint32_t sorted_capacity;
-    tb_event_list begin, end;              ///< one step's, for the callbacks
 } tb_plugins;
 
-struct tb_world;
-
-tb_result tb_plugins_init(struct tb_world* w);
+/* stages.c */
+tb_result tb_plugins_init(tb_plugins* p, const tb_plugin_host* host);
 /// Unload every plugin and free everything.
-void tb_plugins_destroy(struct tb_world* w);
+void tb_plugins_destroy(tb_plugins* p);
 
 /// Append the stages of `point` to the step graph, each a stage of its own.
-tb_result tb_plugins_record(struct tb_world* w, tb_plugin_point point, tb_pass_list* list);
+tb_result tb_plugins_record(tb_plugins* p, tb_plugin_point point, tb_pass_list* list,
+                            const tb_plugins_io* io);
 /// Upload the parameter blocks if they changed (into the transfer recorded before a step).
-void tb_plugins_record_upload(struct tb_world* w, VkCommandBuffer cb);
+void tb_plugins_record_upload(tb_plugins* p, VkCommandBuffer cb);
 
-/* contact_events.c */
+/* loader.c: what the API's plugin calls do once their arguments are checked. A refused
+ * plugin leaves everything as it was. The step must be recorded again after a load or an
+ * unload. */
+tb_result tb_plugins_load(tb_plugins* p, const char* path, tb_plugin_id* out);
+tb_result tb_plugins_unload(tb_plugins* p, tb_plugin_id id);
+tb_result tb_plugins_set_param(tb_plugins* p, tb_plugin_id id, uint32_t offset,
+                               const void* data, uint32_t size);
+
 /// Does a loaded plugin want contact events?
-int tb_plugins_want_events(const struct tb_world* w);
-/// When one does: the stage that finds the step's events (narrowphase/events).
-tb_result tb_plugins_record_events(struct tb_world* w, tb_pass_list* list);
-/// After a submission: the events of its completed steps to the plugins, step by step.
-tb_result tb_plugins_deliver_events(struct tb_world* w, const tb_gpu_counters* counters);
-/// A step found more events than the buffer holds (TB_ABORT_EVENTS): make room for `need`.
-tb_result tb_plugins_grow_events(struct tb_world* w, uint32_t need);
+int tb_plugins_want_events(const tb_plugins* p);
+/// One step's contact events to every plugin that wants them, in load order.
+void tb_plugins_on_contacts(const tb_plugins* p, const tb_contact_events* events);
+
+/* spirv.c */
 
 /// Check a stage's SPIR-V (`what` names it in the error).
 tb_result tb_plugin_check_spirv(tb_diag* diag, const char* what, const uint32_t* code, size_t size);

@@ -17,6 +17,8 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
     { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
     { "integrate/substep", TB_WORKGROUP_SIZE, offsetof(tb_solver, substep) },
     { "solver/tail_list", TB_WORKGROUP_SIZE, offsetof(tb_solver, tail_list) },
+    { "integrate/apply_forces", TB_WORKGROUP_SIZE, offsetof(tb_solver, apply_forces) },
+    { "integrate/integrate", TB_WORKGROUP_SIZE, offsetof(tb_solver, integrate) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
@@ -158,4 +160,37 @@ tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffe
     }
     if (!r) r = record_sweep(s, list, counters, rounds, substeps, TB_SOLVE_RESTITUTION);
     return r;
+}
+
+/* A per-body pass of the step's own (indirect buffer: the counters, as every step kernel). */
+static tb_result record_per_body(const tb_solver* s, tb_pass_list* list, VkPipeline pipeline,
+                                 VkBuffer counters)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_PER_BODY, counters, 0, 0, 0, 0);
+    return add(s, list, &pass);
+}
+
+tb_result tb_solver_record_apply_forces(const tb_solver* s, tb_pass_list* list, VkBuffer counters)
+{
+    return record_per_body(s, list, s->apply_forces, counters);
+}
+
+tb_result tb_solver_record_integrate(const tb_solver* s, tb_pass_list* list, VkBuffer counters)
+{
+    return record_per_body(s, list, s->integrate, counters);
+}
+
+/* The soft contact of a substep h (Box2D v3's soft step): a damped spring of contact_hertz,
+ * capped at a quarter of the substep rate so it stays stable (at half the rate a 10-box
+ * column already rocks itself over); 0 takes the cap (twice as stiff against static
+ * bodies, which cannot give way), written as the bias rate, mass
+ * scale and impulse scale the solve uses (see glsl/solver/contact.glsl). */
+tb_gpu_vec4 tb_solver_softness(const tb_solver_contact* c, float h, double scale)
+{
+    if (!(h > 0)) return (tb_gpu_vec4){ 0, 1, 0, 0 };
+    double cap = 0.25 / h;
+    double hertz = scale * (c->hertz > 0 && c->hertz < cap ? c->hertz : cap);
+    double omega = 2.0 * 3.14159265358979323846 * hertz, zeta = c->damping_ratio;
+    double a1 = 2.0 * zeta + h * omega, a2 = h * omega * a1, a3 = 1.0 / (1.0 + a2);
+    return (tb_gpu_vec4){ (float)(omega / a1), (float)(a2 * a3), (float)a3, h };
 }

@@ -1,4 +1,9 @@
-/* The contact solver's passes: graph colouring of the constraints into batches, then
+/* The solver: the host side of glsl/solver/ and glsl/integrate/.
+ *
+ * Reads this step's manifolds (narrowphase/contacts), the pairs and the bodies' poses,
+ * velocities and inverse mass; writes the colour list and batches, the constraints (solver
+ * data and accumulated impulses, kept for the next step's warm start) and the bodies'
+ * velocities and poses. Its passes: graph colouring of the constraints into batches, then
  * the soft step: substeps of batched projected Gauss-Seidel with soft contacts and a relax
  * sweep (glsl/solver/).
  *
@@ -11,16 +16,17 @@
  * In the step: colouring -> prepare -> apply_forces (resets claims and push) -> solve ->
  * integrate (moves poses with velocity + push).
  */
-#ifndef TB_SOLVER_H
-#define TB_SOLVER_H
+#ifndef TB_SOLVER_SOLVER_H
+#define TB_SOLVER_SOLVER_H
 
 #include "gpu/graph.h"
 #include "gpu/prims.h"
+#include "layout.h"
 
 typedef struct tb_solver {
     tb_pipelines* pipelines;
     VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail, substep;
-    VkPipeline tail_list;
+    VkPipeline tail_list, apply_forces, integrate;
 } tb_solver;
 
 /// What listing the tail's constraints needs: the colour work lists (2 x pair capacity
@@ -64,5 +70,19 @@ tb_result tb_solver_record_prepare(const tb_solver* s, tb_pass_list* list, VkBuf
 /// abandoning the step).
 tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffer counters,
                                  uint32_t rounds, uint32_t substeps, uint32_t iterations);
+
+/// apply_forces (integrate/apply_forces), per body: each body's solver record from its damped
+/// velocities and mass, and no colouring claim. After prepare, before the solve.
+tb_result tb_solver_record_apply_forces(const tb_solver* s, tb_pass_list* list, VkBuffer counters);
+/// integrate (integrate/integrate), per body: poses from the solved velocities and push.
+tb_result tb_solver_record_integrate(const tb_solver* s, tb_pass_list* list, VkBuffer counters);
+
+/// How soft contacts are (tb_world_def.contact_hertz and contact_damping_ratio).
+typedef struct tb_solver_contact {
+    float hertz, damping_ratio;
+} tb_solver_contact;
+
+/// The soft contact of a substep h (tb_gpu_params.soft), `scale` times as stiff.
+tb_gpu_vec4 tb_solver_softness(const tb_solver_contact* c, float h, double scale);
 
 #endif

@@ -7,8 +7,8 @@
  * download. Growth doubles every array on the GPU (a device-side copy keeps the contents)
  * and re-points the descriptor set, which makes the step graph record again.
  */
-#ifndef TB_BODIES_H
-#define TB_BODIES_H
+#ifndef TB_WORLD_BODY_STORE_H
+#define TB_WORLD_BODY_STORE_H
 
 #include "gpu/pipeline.h"
 #include "gpu/transfer.h"

@@ -1,13 +1,7 @@
-/* Reading the last step's contacts back from the GPU. */
+/* Reading the last step's contacts back from the GPU, or handing their buffer over. */
 #include <string.h>
 
 #include "world/world.h"
-
-tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot)
-{
-    if (slot >= w->body_slots.used || !w->bodies[slot].alive) return tb_null_body;
-    return (tb_body_id){ slot + 1, w->serial, w->bodies[slot].generation };
-}
 
 /* A pair with points has solver data (solver/prepare): its friction directions turn the
  * tangent impulses into a world vector. */
@@ -35,12 +29,25 @@ static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu
     return points;
 }
 
-tb_result tb_world_read_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count)
+/* The last step's pairs; 0 before any step and after one that overflowed. */
+static uint32_t last_pairs(const tb_world* w)
 {
-    if (!w || !count || (capacity && !out)) return TB_ERROR_INVALID_ARGUMENT;
-    *count = 0;
     uint32_t pairs = w->gpu_steps ? tb_sim_counters(&w->sim)->state.z : 0;
-    if (pairs > w->sim.pair_capacity) pairs = 0;
+    return pairs <= w->sim.pair_capacity ? pairs : 0;
+}
+
+void tb_world_contact_buffer(const tb_world* w, VkBuffer* buffer, uint32_t* count,
+                             VkDeviceSize* size)
+{
+    *buffer = w->sim.pair[TB_SIM_MANIFOLDS].buffer;
+    *count = last_pairs(w);
+    *size = w->sim.pair[TB_SIM_MANIFOLDS].size;
+}
+
+tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count)
+{
+    *count = 0;
+    uint32_t pairs = last_pairs(w);
     if (!pairs) return TB_OK;
     VkDeviceSize bytes = (VkDeviceSize)pairs * sizeof(tb_gpu_manifold);
     VkDeviceSize cbytes = (VkDeviceSize)pairs * sizeof(tb_gpu_constraint);

@@ -6,8 +6,8 @@
  * both halves of the pairs, last step's manifolds and the per-body pair ranges), re-points the
  * descriptor set and makes the step graph record again.
  */
-#ifndef TB_SIM_H
-#define TB_SIM_H
+#ifndef TB_WORLD_SIM_H
+#define TB_WORLD_SIM_H
 
 #include "gpu/pipeline.h"
 #include "gpu/prims.h"

@@ -1,31 +1,31 @@
-/* The world as the API layer sees it: ids, host-side records and the GPU objects. */
-#ifndef TB_WORLD_H
-#define TB_WORLD_H
+/* The world: everything a tb_world owns, and the work the API calls hand it once their
+ * arguments are checked.
+ *
+ * It owns the GPU plumbing (src/gpu), the bodies (host records, the body store on the GPU),
+ * the shapes (records, the GPU shape table), the step's buffers (sim.h), and one of each
+ * stage: the broadphase, the narrowphase, the solver and the plugins. It assembles the
+ * stages into the step graph (step.c), submits steps, grows what overflowed and runs the
+ * step again (run.c), reads results back (readback.c, stats.c) and hands each step's
+ * contact events to the plugins that want them (events.c). A stage sees the world
+ * only through its own narrow struct, which the world fills in: tb_broadphase_ctx,
+ * tb_narrowphase, tb_solver, tb_plugin_host.
+ */
+#ifndef TB_WORLD_WORLD_H
+#define TB_WORLD_WORLD_H
 
-#include "base/diag.h"
-#include "plugin/plugin.h"
+#include "base/base.h"
 #include "broadphase/broadphase.h"
-#include "geom/hull.h"
-#include "world/body_store.h"
-#include "gpu/graph.h"
-#include "gpu/memory.h"
-#include "gpu/pipeline.h"
-#include "gpu/prims.h"
-#include "world/sim.h"
-#include "solver/solver.h"
-#include "gpu/transfer.h"
+#include "geom/geom.h"
+#include "gpu/gpu.h"
 #include "layout.h"
+#include "narrowphase/narrowphase.h"
+#include "plugin/plugin.h"
+#include "solver/solver.h"
 #include "tumble.h"
+#include "world/body_store.h"
+#include "world/sim.h"
 
 #define TB_DEF_COOKIE 0x54554d42 /* "TUMB" */
-
-/// The step's compute kernels (src/api/step.c names their shaders).
-typedef enum tb_kernel {
-    TB_KERNEL_STEP_BEGIN, TB_KERNEL_WORLD_AABB, TB_KERNEL_CONTACTS, TB_KERNEL_HULL_POINTS,
-    TB_KERNEL_KEEP_CONTACTS,
-    TB_KERNEL_APPLY_FORCES,
-    TB_KERNEL_INTEGRATE, TB_KERNEL_STEP_END, TB_KERNEL_COUNT
-} tb_kernel;
 
 /// Host-side record of a body; what the GPU needs lives in the body store.
 typedef struct tb_body_record {
@@ -49,24 +49,21 @@ typedef struct tb_shape_record {
     tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
 } tb_shape_record;
 
-/// Every live hull's GPU data, packed (src/api/hulls.c).
-typedef struct tb_hull_table {
-    tb_buffer vector_buffer, topology_buffer;
-    uint32_t vector_capacity, topology_capacity; ///< elements of the buffers and host images
-    tb_gpu_vec4* vectors;        ///< host image of hull_vectors
-    uint32_t* topology;          ///< host image of hull_topology
-    uint32_t vectors_used, topology_used;
-    int dirty;                   ///< a hull shape came or went: pack again
-    int upload;                  ///< packed data not yet uploaded
-} tb_hull_table;
+/// Contact events of one step, as the callbacks get them.
+typedef struct tb_event_list {
+    tb_contact_event* events;
+    uint32_t count, capacity;
+} tb_event_list;
 
-/// Generic slot table bookkeeping: free slots are reused last-in first-out.
-typedef struct tb_slots {
-    uint32_t used;          ///< slots handed out at least once (high-water)
-    uint32_t live;
-    uint32_t* free;
-    uint32_t free_count, capacity;
-} tb_slots;
+/// The contact events the GPU finds in each step while a plugin wants them (events.c).
+typedef struct tb_events {
+    VkPipeline find;                       ///< narrowphase/events
+    tb_buffer buffer;                      ///< tb_gpu_contact_event[capacity]
+    uint32_t capacity;
+    tb_gpu_contact_event* sorted;          ///< a submission's events, sorted
+    uint32_t sorted_capacity;
+    tb_event_list begin, end;              ///< one step's, for the callbacks
+} tb_events;
 
 struct tb_world {
     uint16_t serial;
@@ -78,13 +75,14 @@ struct tb_world {
     tb_transfer transfer;
     tb_body_store store;
     tb_prims prims;
+    tb_gpu_kit kit;                        ///< the above, as the stages borrow them
     tb_sim sim;
-    tb_solver solver;
-    VkPipeline kernels[TB_KERNEL_COUNT];
+    VkPipeline step_begin, step_end;       ///< step/begin, step/end
     tb_broadphase broadphase_kind;         ///< never TB_BROADPHASE_DEFAULT
     const tb_broadphase_ops* broadphase;
-    void* broadphase_state;                ///< the broadphase's own (kernels, buffers)
-    VkPipeline pair_check;                 ///< broadphase/pair_check, shared by all
+    tb_broadphase_ctx bp;                  ///< what the broadphase sees
+    tb_narrowphase narrowphase;
+    tb_solver solver;
     uint32_t body_set_version;             ///< bodies created and destroyed so far
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
@@ -111,8 +109,8 @@ struct tb_world {
     tb_buffer shape_buffer;
     uint32_t shape_buffer_capacity;
     int shapes_dirty;
-    tb_hull_table hulls;
     tb_plugins plugins;
+    tb_events events;
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
@@ -121,61 +119,106 @@ struct tb_world {
     double gpu_ms;
 };
 
-/* slots.c */
-tb_result tb_slots_take(tb_slots* slots, uint32_t* out);
-void tb_slots_give(tb_slots* slots, uint32_t slot);
-void tb_slots_free(tb_slots* slots);
-
 /* world.c */
-/// tb_world_create with extra device options (extensions) for Vulkan embedders.
-tb_result tb_world_create_with(const tb_world_def* def, const tb_gpu_options* extra,
-                               tb_world** out);
-/// Upload what the host wrote and the GPU has not seen yet.
-tb_result tb_world_flush(tb_world* w);
-/// Give the GPU shape table room for every shape slot (may replace its buffer).
-tb_result tb_world_prepare_shapes(tb_world* w);
-/// Bring the arrays in `mask` of the body mirror up to date (uploading first what is dirty).
-tb_result tb_world_fetch(tb_world* w, uint32_t mask);
+/// A world for a checked def and a resolved broadphase, with extra device options
+/// (extensions) for Vulkan embedders. `early` holds the log sink (and any error).
+tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_diag* early,
+                         const tb_gpu_options* extra, tb_world** out);
+/// Free everything; NULL does nothing.
+void tb_world_free(tb_world* w);
 /// Make room for `slots` body slots on the GPU.
 tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots);
 
-/* hulls.c */
-tb_result tb_hull_table_init(tb_world* w);
-void tb_hull_table_destroy(tb_world* w);
-/// Pack the hulls again if shapes changed (may replace the buffers).
-tb_result tb_hull_table_prepare(tb_world* w);
-VkDeviceSize tb_hull_table_upload_bytes(const tb_world* w);
-void tb_hull_table_record_upload(tb_world* w, tb_transfer* transfer);
-
-/// The soft contact of a substep h (tb_gpu_params.soft), `scale` times as stiff.
-tb_gpu_vec4 tb_contact_softness(const tb_world* w, float h, double scale);
+/* run.c: submitting steps, growing what overflowed and running the step again. */
+/// Run n steps of dt (checked), redoing any step a buffer overflowed in.
+tb_result tb_world_run(tb_world* w, float dt, uint32_t n);
+/// Upload what the host wrote and the GPU has not seen yet.
+tb_result tb_world_flush(tb_world* w);
+/// Bring the arrays in `mask` of the body mirror up to date (uploading first what is dirty).
+tb_result tb_world_fetch(tb_world* w, uint32_t mask);
 
 /* step.c */
 tb_result tb_step_kernels_create(tb_world* w);
 void tb_step_kernels_destroy(tb_world* w);
 /// Build the step graph for the current capacities and colouring rounds.
 tb_result tb_step_build(tb_world* w);
+/// Fill in what the broadphase sees of the step's buffers (they move when they grow).
+void tb_step_broadphase_io(tb_world* w);
+
+/* bodies.c: a body def the API checked, and what the GPU needs of it. */
+typedef struct tb_body_resolved {
+    uint32_t shape;         ///< shape slot
+    tb_quat rotation;       ///< normalised
+    float mass;
+    tb_vec3 inertia;
+} tb_body_resolved;
+
+/// The record of a valid id, or an error and NULL.
+tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r);
+/// The id of the live body in a slot; the null id for a dead or unused slot.
+tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot);
+/// Add `count` checked bodies (ids to out); all or none.
+tb_result tb_bodies_add(tb_world* w, const tb_body_def* defs, const tb_body_resolved* resolved,
+                        uint32_t count, tb_body_id* out);
+void tb_bodies_remove(tb_world* w, uint32_t slot);
+void tb_bodies_set_pose(tb_world* w, uint32_t slot, tb_vec3 p, tb_quat unit);
+void tb_bodies_set_velocity(tb_world* w, uint32_t slot, tb_vec3 v, tb_vec3 av);
+tb_result tb_bodies_get_velocity(tb_world* w, uint32_t slot, tb_vec3* v, tb_vec3* av);
+/// An impulse at a world point of a dynamic body: velocities change at once.
+tb_result tb_bodies_apply_impulse(tb_world* w, uint32_t slot, tb_vec3 impulse, tb_vec3 point);
+/// Two arrays of the body mirror, fresh, for ids already checked: a as vec3, b as quat or vec3.
+tb_result tb_bodies_gather(tb_world* w, const tb_body_id* ids, uint32_t count,
+                           tb_body_array a, tb_body_array b, tb_vec3* out_a, void* out_b,
+                           int b_is_quat);
+uint32_t tb_bodies_ids(const tb_world* w, tb_body_id* out, uint32_t capacity);
+
+/* shapes.c */
+/// The record of a valid id, or an error and NULL.
+tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
+/// Add a checked shape: its record (a hull it holds becomes the world's) and its GPU entry.
+tb_result tb_shapes_add(tb_world* w, tb_shape_record* record, const tb_gpu_shape* gpu,
+                        tb_shape_id* out);
+/// Remove a shape no body uses.
+void tb_shapes_remove(tb_world* w, uint32_t slot);
+/// Free a shape's hull geometry, if it has any.
+void tb_shape_release_hull(tb_shape_record* s);
+/// The GPU shape table, created at `capacity` entries (replacing any).
+tb_result tb_shapes_create_buffer(tb_world* w, uint32_t capacity);
+/// Pack the hulls if they changed and give the GPU shape table room for every shape slot
+/// (either may replace buffers).
+tb_result tb_world_prepare_shapes(tb_world* w);
+
+/* readback.c */
+tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count);
+/// Manifolds of the last step for interop: buffer, count, size.
+void tb_world_contact_buffer(const tb_world* w, VkBuffer* buffer, uint32_t* count,
+                             VkDeviceSize* size);
+
+/* stats.c */
+void tb_world_stats_read(const tb_world* w, tb_world_stats* out);
+void tb_world_device(const tb_world* w, tb_device_info* out);
+
+/* plugins.c: the plugin calls, which make the step record again. */
+tb_result tb_world_plugins_init(tb_world* w);
+tb_result tb_world_plugin_load(tb_world* w, const char* path, tb_plugin_id* out);
+tb_result tb_world_plugin_unload(tb_world* w, tb_plugin_id id);
+
+/* events.c */
+tb_result tb_events_init(tb_world* w);
+void tb_events_destroy(tb_world* w);
+/// While a plugin wants them: the stage that finds the step's events (narrowphase/events).
+tb_result tb_events_record(tb_world* w, tb_pass_list* list);
+/// After a submission: the events of its completed steps to the plugins, step by step.
+tb_result tb_events_deliver(tb_world* w, const tb_gpu_counters* counters);
+/// A step found more events than the buffer holds (TB_ABORT_EVENTS): make room for `need`.
+tb_result tb_events_grow(tb_world* w, uint32_t need);
 
 /* shader_dir.c */
-/// TUMBLE_SHADER_DIR, when set, as tb_world_set_shader_dir (before any pipeline exists).
+/// Compile the step's shaders from a GLSL tree from now on (hot-reload).
+tb_result tb_world_shader_dir(tb_world* w, const char* dir);
+/// TUMBLE_SHADER_DIR, when set, as tb_world_shader_dir (before any pipeline exists).
 tb_result tb_world_shader_dir_from_env(tb_world* w);
 /// Between steps: swap in the shaders written since the last step (hot-reload).
 void tb_world_reload_shaders(tb_world* w);
-
-/* checks.c */
-int tb_finite3(tb_vec3 v);
-int tb_finite_quat(tb_quat q);
-/// Check a rotation and return it normalised; fails beyond the 1e-3 tolerance.
-tb_result tb_check_rotation(tb_diag* diag, tb_quat q, tb_quat* out, const char* what);
-
-/* body.c / shape.c lookups: the record of a valid id, or an error and NULL. */
-tb_body_record* tb_body_lookup(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r);
-tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
-/* contacts.c */
-/// The id of the live body in a slot; the null id for a dead or unused slot.
-tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot);
-
-/// Free a shape's hull geometry, if it has any.
-void tb_shape_release_hull(tb_shape_record* s);
 
 #endif

@@ -7,9 +7,12 @@
  * copy outside the brackets) before each one, so every sort sees the same random keys.
  * Prints one line per size: median GPU microseconds and elements per second of each
  * primitive; with --passes 1 also the median of every pass of the sort and the scan.
- * Uses the library's internals (src/), like the tests.
+ * Uses the library's GPU layer (src/gpu/) alone: no world, only the device, memory, the
+ * pipelines and the primitives.
  */
-#include "world/world.h"
+#include "gpu/device.h"
+#include "gpu/memory.h"
+#include "gpu/pipeline.h"
 #include "gpu/prims.h"
 
 #include <stdio.h>
@@ -20,7 +23,10 @@
 #define MAX_REPS 64
 
 typedef struct bench {
-    tb_world* w;
+    tb_diag diag;
+    tb_gpu gpu;
+    tb_memory memory;
+    tb_pipelines pipelines;
     tb_prims prims;
     tb_buffer work, pristine, scratch, host;
     uint32_t capacity;
@@ -29,9 +35,9 @@ typedef struct bench {
     double ns_per_tick;
 } bench;
 
-static void die(const char* what, tb_world* w)
+static void die(const char* what, const bench* b)
 {
-    fprintf(stderr, "bench-prims: %s: %s\n", what, tb_world_last_error(w));
+    fprintf(stderr, "bench-prims: %s: %s\n", what, b ? b->diag.message : "");
     exit(1);
 }
 
@@ -50,37 +56,42 @@ static VkDeviceSize values_offset(const bench* b) { return 256 + 4 * (VkDeviceSi
 static void setup(bench* b, uint32_t capacity, uint32_t reps)
 {
     memset(b, 0, sizeof *b);
-    tb_world_def def = tb_default_world_def();
-    if (tb_world_create(&def, &b->w) != TB_OK) die("world", NULL);
-    if (tb_prims_init(&b->prims, &b->w->pipelines) != TB_OK) die("prims", b->w);
+    tb_gpu_options options;
+    memset(&options, 0, sizeof options);   /* the device: TUMBLE_DEVICE, else the best GPU */
+    if (tb_gpu_create(&b->gpu, &options, &b->diag) || tb_memory_init(&b->memory, &b->gpu) ||
+        tb_pipelines_init(&b->pipelines, &b->gpu, NULL))
+        die("device", b);
+    if (tb_prims_init(&b->prims, &b->pipelines) != TB_OK) die("prims", b);
     b->capacity = capacity;
     VkDeviceSize bytes = values_offset(b) + 4 * (VkDeviceSize)capacity;
     VkBufferUsageFlags copy = VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     VkDeviceSize scratch = tb_prims_sort_scratch(&b->prims, capacity);
     VkDeviceSize scan = tb_prims_scan_scratch(&b->prims, capacity);
     if (scan > scratch) scratch = scan;
-    if (tb_buffer_create(&b->w->memory, bytes, copy | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 0, &b->work) ||
-        tb_buffer_create(&b->w->memory, bytes, copy, 0, &b->pristine) ||
-        tb_buffer_create(&b->w->memory, scratch, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+    if (tb_buffer_create(&b->memory, bytes, copy | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 0, &b->work) ||
+        tb_buffer_create(&b->memory, bytes, copy, 0, &b->pristine) ||
+        tb_buffer_create(&b->memory, scratch, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                          VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, 0, &b->scratch) ||
-        tb_buffer_create(&b->w->memory, bytes, copy, 1, &b->host))
-        die("buffers", b->w);
+        tb_buffer_create(&b->memory, bytes, copy, 1, &b->host))
+        die("buffers", b);
     VkQueryPoolCreateInfo qi = { .sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO,
                                  .queryType = VK_QUERY_TYPE_TIMESTAMP, .queryCount = 64 * reps };
-    if (vkCreateQueryPool(b->w->gpu.device, &qi, NULL, &b->queries) != VK_SUCCESS) die("queries", b->w);
-    if (tb_gpu_command_buffer(&b->w->gpu, &b->cb)) die("command buffer", b->w);
-    b->ns_per_tick = b->w->gpu.props.limits.timestampPeriod;
+    if (vkCreateQueryPool(b->gpu.device, &qi, NULL, &b->queries) != VK_SUCCESS) die("queries", b);
+    if (tb_gpu_command_buffer(&b->gpu, &b->cb)) die("command buffer", b);
+    b->ns_per_tick = b->gpu.props.limits.timestampPeriod;
 }
 
 static void teardown(bench* b)
 {
-    vkDestroyQueryPool(b->w->gpu.device, b->queries, NULL);
-    tb_buffer_destroy(&b->w->memory, &b->host);
-    tb_buffer_destroy(&b->w->memory, &b->scratch);
-    tb_buffer_destroy(&b->w->memory, &b->pristine);
-    tb_buffer_destroy(&b->w->memory, &b->work);
+    vkDestroyQueryPool(b->gpu.device, b->queries, NULL);
+    tb_buffer_destroy(&b->memory, &b->host);
+    tb_buffer_destroy(&b->memory, &b->scratch);
+    tb_buffer_destroy(&b->memory, &b->pristine);
+    tb_buffer_destroy(&b->memory, &b->work);
     tb_prims_destroy(&b->prims);
-    tb_world_destroy(b->w);
+    tb_pipelines_destroy(&b->pipelines);
+    tb_memory_destroy(&b->memory);
+    tb_gpu_destroy(&b->gpu);
 }
 
 static void barrier(VkCommandBuffer cb, VkPipelineStageFlags src, VkAccessFlags sa,
@@ -100,7 +111,7 @@ static void begin(bench* b)
 static void submit(bench* b)
 {
     vkEndCommandBuffer(b->cb);
-    if (tb_gpu_submit_wait(&b->w->gpu, &b->cb, 1)) die("submit", b->w);
+    if (tb_gpu_submit_wait(&b->gpu, &b->cb, 1)) die("submit", b);
 }
 
 /* Random keys and values (or flags with the given density, or small scan values) and the
@@ -152,8 +163,8 @@ static double time_list(bench* b, const tb_pass_list* list, uint32_t reps, doubl
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
         vkCmdWriteTimestamp(b->cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, b->queries, stamps * r);
         if (!per_pass) {
-            tb_passes_record(b->cb, b->w->pipelines.layout, list->passes, list->count,
-                             b->w->params_buffer.buffer);
+            tb_passes_record(b->cb, b->pipelines.layout, list->passes, list->count,
+                             VK_NULL_HANDLE /* no per-body passes */);
             vkCmdWriteTimestamp(b->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, b->queries, stamps * r + 1);
             continue;
         }
@@ -163,16 +174,16 @@ static double time_list(bench* b, const tb_pass_list* list, uint32_t reps, doubl
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                         VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
                             VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-            tb_passes_record(b->cb, b->w->pipelines.layout, &list->passes[i], 1,
-                             b->w->params_buffer.buffer);
+            tb_passes_record(b->cb, b->pipelines.layout, &list->passes[i], 1,
+                             VK_NULL_HANDLE /* no per-body passes */);
             vkCmdWriteTimestamp(b->cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, b->queries,
                                 stamps * r + i + 1);
         }
     }
     submit(b);
     uint64_t* ticks = malloc(sizeof *ticks * stamps * reps);
-    if (!ticks) die("memory", b->w);
-    vkGetQueryPoolResults(b->w->gpu.device, b->queries, 0, stamps * reps,
+    if (!ticks) die("memory", b);
+    vkGetQueryPoolResults(b->gpu.device, b->queries, 0, stamps * reps,
                           sizeof *ticks * stamps * reps, ticks, sizeof ticks[0],
                           VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
     double us[MAX_REPS];
@@ -245,7 +256,7 @@ int main(int argc, char** argv)
     for (uint32_t i = 0; i < size_count; i++) if (sizes[i] > capacity) capacity = sizes[i];
     bench b;
     setup(&b, capacity, reps);
-    printf("device: %s, subgroup %u, group sizes %u (sort %u)\n", b.w->gpu.props.deviceName,
+    printf("device: %s, subgroup %u, group sizes %u (sort %u)\n", b.gpu.props.deviceName,
            b.prims.subgroup_size, b.prims.group_size, b.prims.sort_group_size);
     tb_gpu_ptr count = tb_gpu_ptr_of(&b.work, 0), total = tb_gpu_ptr_of(&b.work, 4);
     tb_gpu_ptr keys = tb_gpu_ptr_of(&b.work, keys_offset());
@@ -257,7 +268,7 @@ int main(int argc, char** argv)
         if (tb_prims_sort(&b.prims, &sort, keys, values, count, n, key_bits, scratch) ||
             tb_prims_scan(&b.prims, &scan, keys, keys, count, n, total, scratch) ||
             tb_prims_compact(&b.prims, &compact, values, keys, count, n, total, scratch))
-            die("record", b.w);
+            die("record", &b);
         upload(&b, n, 0);
         double sort_us = time_list(&b, &sort, reps, NULL);
         int ok = check_sorted(&b, n, key_bits);

@@ -1,0 +1,25 @@
+/* src/api/: the public entry points of include/tumble.h and tumble_vulkan.h, and nothing
+ * else. Each checks its arguments (NULLs, definitions, finite numbers, ids) and then calls
+ * the world (src/world/); a refused call changes nothing.
+ *
+ *   world.c     create and destroy, step, gravity, stats, errors, shader directory
+ *   body.c      bodies: defs checked and resolved (mass, inertia), poses, velocities, reads
+ *   shape.c     shapes: materials and geometry checked, mass properties per unit mass
+ *   contacts.c  the last step's contacts
+ *   plugin.c    loading and unloading plugins, their parameters
+ *   vulkan.c    Vulkan interop (tumble_vulkan.h)
+ *   defaults.c  every default definition
+ *
+ * This header is what the API's own files share; nothing outside src/api/ includes it. */
+#ifndef TB_API_API_H
+#define TB_API_API_H
+
+#include "gpu/device.h"
+#include "tumble.h"
+
+/// tb_world_create with extra device options (extensions) for Vulkan embedders: checks the
+/// def, then builds the world; remembers the error of a world that could not be made.
+tb_result tb_api_world_create(const tb_world_def* def, const tb_gpu_options* extra,
+                              tb_world** out);
+
+#endif

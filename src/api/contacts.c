@@ -1,0 +1,8 @@
+/* Contacts through the API (the world reads them back: src/world/readback.c). */
+#include "world/world.h"
+
+tb_result tb_world_read_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count)
+{
+    if (!w || !count || (capacity && !out)) return TB_ERROR_INVALID_ARGUMENT;
+    return tb_world_contacts(w, out, capacity, count);
+}

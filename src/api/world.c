@@ -1,0 +1,134 @@
+/* The world through the API: creation, stepping, gravity, stats, errors. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "api/api.h"
+#include "base/checks.h"
+#include "world/world.h"
+
+static tb_result check_world_def(tb_diag* diag, const tb_world_def* def)
+{
+    if (!def || def->internal_cookie != TB_DEF_COOKIE)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT,
+                       "world def was not initialised with tb_default_world_def()");
+    if (!tb_finite3(def->gravity))
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    if (!isfinite(def->max_rotation_per_step) || def->max_rotation_per_step <= 0)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "max_rotation_per_step must be finite "
+                       "and > 0, not %g", (double)def->max_rotation_per_step);
+    if (def->substeps < 1 || def->substeps > 64)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "substeps must be in [1, 64], not %u",
+                       def->substeps);
+    if (!isfinite(def->contact_hertz) || def->contact_hertz < 0)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "contact_hertz must be finite and >= 0, "
+                       "not %g", (double)def->contact_hertz);
+    if (def->solver_iterations < 1 || def->solver_iterations > 1000)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "solver_iterations must be in [1, 1000], "
+                       "not %u", def->solver_iterations);
+    const struct { float v; const char* name; float hi; } ranges[] = {
+        { def->contact_margin, "contact_margin", 1e30f },
+        { def->restitution_threshold, "restitution_threshold", 1e30f },
+        { def->contact_damping_ratio, "contact_damping_ratio", 1e30f },
+        { def->contact_push_speed, "contact_push_speed", 1e30f },
+    };
+    for (size_t i = 0; i < sizeof ranges / sizeof ranges[0]; i++)
+        if (!isfinite(ranges[i].v) || ranges[i].v < 0 || ranges[i].v > ranges[i].hi)
+            return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s must be finite, >= 0%s, not %g",
+                           ranges[i].name, ranges[i].hi == 1.0f ? " and <= 1" : "",
+                           (double)ranges[i].v);
+    return TB_OK;
+}
+
+tb_result tb_api_world_create(const tb_world_def* def, const tb_gpu_options* extra,
+                              tb_world** out)
+{
+    tb_diag early = { .log = def ? def->log : NULL, .log_user = def ? def->log_user : NULL };
+    if (!out) return tb_fail(&early, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = NULL;
+    tb_result r = check_world_def(&early, def);
+    tb_broadphase broadphase = TB_BROADPHASE_GRID;
+    if (!r) r = tb_broadphase_resolve(&early, def->broadphase, &broadphase);
+    if (!r) r = tb_world_build(def, broadphase, &early, extra, out);
+    tb_diag_set_create_error(r ? early.message : "");
+    return r;
+}
+
+tb_result tb_world_create(const tb_world_def* def, tb_world** out)
+{
+    tb_gpu_options none = { 0 };
+    return tb_api_world_create(def, &none, out);
+}
+
+void tb_world_destroy(tb_world* w)
+{
+    tb_world_free(w);
+}
+
+const char* tb_world_last_error(const tb_world* w)
+{
+    return w ? w->diag.message : tb_diag_create_error();
+}
+
+const char* tb_result_string(tb_result result)
+{
+    switch (result) {
+    case TB_OK: return "success";
+    case TB_ERROR_INVALID_ARGUMENT: return "invalid argument";
+    case TB_ERROR_INVALID_ID: return "invalid id";
+    case TB_ERROR_STALE_ID: return "stale id (the object was destroyed)";
+    case TB_ERROR_CAPACITY: return "capacity exhausted";
+    case TB_ERROR_OUT_OF_MEMORY: return "out of memory";
+    case TB_ERROR_NO_DEVICE: return "no suitable Vulkan device";
+    case TB_ERROR_DEVICE: return "Vulkan device error";
+    case TB_ERROR_IN_USE: return "object in use";
+    default: return "unknown result code";
+    }
+}
+
+tb_result tb_world_set_gravity(tb_world* w, tb_vec3 gravity)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!tb_finite3(gravity))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    w->gravity = gravity;
+    return TB_OK;
+}
+
+tb_vec3 tb_world_get_gravity(const tb_world* w)
+{
+    return w ? w->gravity : (tb_vec3){ 0, 0, 0 };
+}
+
+tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!isfinite(dt) || dt <= 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
+                       (double)dt);
+    return tb_world_run(w, dt, n);
+}
+
+tb_result tb_world_step(tb_world* w, float dt)
+{
+    return tb_world_step_n(w, dt, 1);
+}
+
+tb_result tb_world_device_info(const tb_world* w, tb_device_info* out)
+{
+    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    tb_world_device(w, out);
+    return TB_OK;
+}
+
+tb_result tb_world_get_stats(const tb_world* w, tb_world_stats* out)
+{
+    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    tb_world_stats_read(w, out);
+    return TB_OK;
+}
+
+tb_result tb_world_set_shader_dir(tb_world* w, const char* dir)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    return tb_world_shader_dir(w, dir);
+}

@@ -1,0 +1,16 @@
+/* src/geom/: host geometry in plain C, with no Vulkan: what shapes are made of before the
+ * GPU sees them.
+ *
+ *   hull.h        convex hulls: quickhull from a point cloud, faces, edges, mass properties
+ *                 in the principal frame (quickhull.c, hull.c, hull_mass.c)
+ *
+ * It reads the caller's points and writes hulls the caller owns; errors come back as a
+ * sentence in the caller's buffer. The narrowphase's hull table packs these hulls for the
+ * GPU.
+ */
+#ifndef TB_GEOM_GEOM_H
+#define TB_GEOM_GEOM_H
+
+#include "geom/hull.h"
+
+#endif

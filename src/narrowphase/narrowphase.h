@@ -1,0 +1,74 @@
+/* The narrowphase: the host side of glsl/narrowphase/.
+ *
+ * Reads this step's pairs (the broadphase's), the bodies' poses and the shape table, the
+ * packed hulls (the hull table below) and last step's manifolds. Writes one manifold per
+ * pair (up to four points sharing a normal, with last step's impulses of the same features
+ * for the warm start), and at the end of the step keeps this step's manifolds, with the
+ * solver's final impulses, as last step's for the next. Its passes:
+ *   narrowphase/contacts     one thread per pair: the manifold; hull pairs that touch get
+ *                            only their separating axis
+ *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
+ *                            while the world has hull shapes
+ *   narrowphase/keep         this step's manifolds become last step's
+ * Per-pair passes are dispatched with counters.pair_dispatch.
+ *
+ * The hull table packs the geometry of every live hull and box shape into the two buffers
+ * bound at TB_BIND_HULL_VECTORS and TB_BIND_HULL_TOPOLOGY (layout.h). Shapes are few and
+ * change rarely next to bodies, so any change marks it dirty and the next upload packs every
+ * live hull again, in slot order, rewriting each shape's locator (tb_gpu_shape.hull). The
+ * buffers grow to the next power of two when the packed data outgrows them; that replaces a
+ * binding, so the step is recorded again.
+ */
+#ifndef TB_NARROWPHASE_H
+#define TB_NARROWPHASE_H
+
+#include "geom/geom.h"
+#include "gpu/gpu.h"
+#include "layout.h"
+
+/// Every live hull's GPU data, packed.
+typedef struct tb_hull_table {
+    tb_buffer vector_buffer, topology_buffer;
+    uint32_t vector_capacity, topology_capacity; ///< elements of the buffers and host images
+    tb_gpu_vec4* vectors;        ///< host image of hull_vectors
+    uint32_t* topology;          ///< host image of hull_topology
+    uint32_t vectors_used, topology_used;
+    int dirty;                   ///< a hull shape came or went: pack again
+    int upload;                  ///< packed data not yet uploaded
+} tb_hull_table;
+
+typedef struct tb_narrowphase {
+    tb_gpu_kit kit;
+    VkPipeline contacts, hull_points, keep;
+    tb_hull_table hulls;
+} tb_narrowphase;
+
+/// The shapes as the hull table packs them: per shape slot, its hull (NULL for a dead slot
+/// or a shape without one), and the GPU shape table whose locators packing rewrites.
+typedef struct tb_hull_shapes {
+    uint32_t count;
+    const tb_hull* (*hull_at)(const void* owner, uint32_t slot);
+    const void* owner;
+    tb_gpu_shape* gpu_shapes;
+} tb_hull_shapes;
+
+/// Pipelines and the first hull buffers (bound). *replaced: buffers were bound.
+tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced);
+void tb_narrowphase_destroy(tb_narrowphase* np);
+
+/// narrowphase/contacts, then narrowphase/hull_points when `hull_shapes`; `counters` is the
+/// buffer bound at TB_BIND_COUNTERS.
+tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
+                                         VkBuffer counters, int hull_shapes);
+/// narrowphase/keep.
+tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
+                                     VkBuffer counters);
+
+/// Pack the hulls again if shapes changed (may replace the buffers: *replaced set).
+/// Rewrites the locators of every hull shape in shapes->gpu_shapes.
+tb_result tb_hull_table_prepare(tb_narrowphase* np, const tb_hull_shapes* shapes, int* replaced);
+/// Staging bytes of the upload packing left, if any.
+VkDeviceSize tb_hull_table_upload_bytes(const tb_narrowphase* np);
+void tb_hull_table_record_upload(tb_narrowphase* np, tb_transfer* transfer);
+
+#endif

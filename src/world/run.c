@@ -1,0 +1,187 @@
+/* Running steps: this submission's uploads, the submission, and after it the growth of
+ * whatever overflowed, after which the step is run again from its unchanged inputs. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "world/world.h"
+
+#define MIN_COLOUR_ROUNDS 4u
+#define ROUNDS_SPARE 2u      /* rounds recorded beyond the colours a step used */
+#define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
+#define MAX_REDO 16
+
+/* Per-body dispatches cover the slots in use; rows of groups keep x within the device limit. */
+static void write_params(tb_world* w, float dt)
+{
+    uint32_t slots = w->store.slots;
+    uint32_t groups = (slots + TB_WORKGROUP_SIZE - 1) / TB_WORKGROUP_SIZE;
+    uint32_t max_x = w->gpu.props.limits.maxComputeWorkGroupCount[0];
+    uint32_t x = groups < max_x ? groups : max_x;
+    tb_gpu_params* p = &w->params;
+    p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
+    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, w->substeps, w->body_set_version };
+    p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
+    p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
+    p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
+                                  w->solver_iterations };
+    p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold,
+                                w->contact_push_speed, 0 };
+    tb_solver_contact contact = { w->contact_hertz, w->contact_damping_ratio };
+    p->soft = tb_solver_softness(&contact, dt / (float)w->substeps, 1.0);
+    p->soft_static = tb_solver_softness(&contact, dt / (float)w->substeps, 2.0);
+    const tb_buffer* pair = w->sim.pair;
+    p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
+                                            pair[TB_SIM_PREV_MANIFOLDS].address);
+    p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address, 0);
+}
+
+/* Record this submission's uploads (params, shapes, dirty bodies) and, with a mask, the
+ * downloads of those body arrays that are stale. */
+static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const void** landing)
+{
+    VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
+    VkDeviceSize bytes = shape_bytes + tb_hull_table_upload_bytes(&w->narrowphase) +
+                         tb_body_store_upload_bytes(&w->store) +
+                         tb_body_store_download_bytes(&w->store, mask) + 64;
+    tb_transfer* t = &w->transfer;
+    tb_result r = tb_transfer_begin(t, bytes);
+    if (r) return r;
+    write_params(w, dt);
+    vkCmdUpdateBuffer(t->cb, w->params_buffer.buffer, 0, sizeof w->params, &w->params);
+    tb_plugins_record_upload(&w->plugins, t->cb);
+    uint32_t no_abort = 0;   /* a step abandoned before is run again from here */
+    vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, state), 4, &no_abort);
+    uint32_t no_events[2] = { 0, 0 };   /* the last submission's were delivered */
+    vkCmdUpdateBuffer(t->cb, w->sim.counters.buffer, offsetof(tb_gpu_counters, events),
+                      sizeof no_events, no_events);
+    if (shape_bytes) {
+        void* dst = tb_transfer_upload(t, w->shape_buffer.buffer, 0, shape_bytes);
+        if (dst) memcpy(dst, w->gpu_shapes, shape_bytes);
+        w->shapes_dirty = 0;
+    }
+    tb_hull_table_record_upload(&w->narrowphase, t);
+    tb_body_store_record_uploads(&w->store, t);
+    if (mask) {
+        tb_transfer_barrier(t);
+        tb_body_store_record_downloads(&w->store, t, mask, landing);
+    }
+    return tb_transfer_end(t);
+}
+
+tb_result tb_world_fetch(tb_world* w, uint32_t mask)
+{
+    if (!(mask & ~w->store.fresh)) return TB_OK;
+    const void* landing[TB_ARRAY_COUNT] = { 0 };
+    tb_result r = tb_world_prepare_shapes(w);
+    if (!r) r = record_transfer(w, 0.0f, mask, landing);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    if (!r) tb_body_store_take_downloads(&w->store, mask, landing);
+    return r;
+}
+
+tb_result tb_world_flush(tb_world* w)
+{
+    if (!w->store.dirty_count && !w->shapes_dirty && !w->narrowphase.hulls.dirty &&
+        w->shape_slots.used <= w->shape_buffer_capacity)
+        return TB_OK;
+    tb_result r = tb_world_prepare_shapes(w);
+    if (!r) r = record_transfer(w, 0.0f, 0, NULL);
+    if (!r) r = tb_gpu_submit_wait(&w->gpu, &w->transfer.cb, 1);
+    return r;
+}
+
+static tb_result submit_steps(tb_world* w, uint32_t n)
+{
+    VkCommandBuffer* cbs = malloc(((size_t)n + 1) * sizeof *cbs);
+    if (!cbs) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    cbs[0] = w->transfer.cb;
+    for (uint32_t i = 1; i <= n; i++) cbs[i] = w->graph.cb;
+    tb_result r = tb_gpu_submit_wait(&w->gpu, cbs, n + 1);
+    free(cbs);
+    return r;
+}
+
+/* A step the GPU abandoned: grow what overflowed so the step fits when run again. Pairs get
+ * a quarter more than needed (at least a quarter more than before), within the device. */
+static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
+{
+    tb_result r = TB_OK;
+    if (c->state.x & TB_ABORT_PAIRS) {
+        uint64_t limit = tb_sim_pair_limit(&w->sim), need = c->state.w;
+        if (need > limit)
+            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step found %llu contact pairs, more "
+                           "than the %llu this device's buffers can hold",
+                           (unsigned long long)need, (unsigned long long)limit);
+        uint64_t want = need + need / 4 + 64;
+        uint64_t grown = (uint64_t)w->sim.pair_capacity + w->sim.pair_capacity / 4;
+        if (want < grown) want = grown;
+        if (want > limit) want = limit;
+        r = tb_sim_reserve_pairs(&w->sim, &w->transfer, (uint32_t)want);
+    }
+    if (!r && (c->state.x & TB_ABORT_EVENTS)) r = tb_events_grow(w, c->events.x);
+    if (!r && (c->state.x & TB_ABORT_COLOURS)) {
+        uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
+        w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
+    }
+    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS)))
+        r = tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU abandoned a step for an unknown reason "
+                    "(flags %#x)", c->state.x);
+    w->step_built = 0;
+    w->buffer_generation++;
+    return r;
+}
+
+/* Every recorded colouring round costs dispatches in the colouring and in each solver
+ * iteration, used or not: when a step used far fewer colours, record fewer rounds (with a
+ * little room; a step that needs more is run again with more). */
+static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
+{
+    uint32_t used = c->solver.x;
+    if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
+    uint32_t rounds = used + ROUNDS_SPARE > MIN_COLOUR_ROUNDS ? used + ROUNDS_SPARE
+                                                              : MIN_COLOUR_ROUNDS;
+    if (used + SHRINK_SLACK < w->colour_rounds && rounds < w->colour_rounds) {
+        w->colour_rounds = rounds;
+        w->step_built = 0;
+    }
+}
+
+/* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
+static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
+{
+    tb_world_reload_shaders(w);
+    tb_result r = tb_world_prepare_shapes(w);
+    if (!r && !w->step_built) r = tb_step_build(w);
+    if (!r) r = tb_graph_prepare(&w->graph, w->params_buffer.buffer);
+    if (!r) r = record_transfer(w, dt, 0, NULL);
+    if (!r) r = submit_steps(w, n);
+    if (r) return r;
+    tb_body_store_stepped(&w->store);
+    w->submits++;
+    const tb_gpu_counters* c = tb_sim_counters(&w->sim);
+    *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
+    w->gpu_steps += *done;
+    r = tb_events_deliver(w, c);
+    if (!r && c->state.x) r = grow_for(w, c);
+    else if (!r) fit_colour_rounds(w, c);
+    return r;
+}
+
+tb_result tb_world_run(tb_world* w, float dt, uint32_t n)
+{
+    uint32_t left = n, redo = 0;
+    while (left > 0) {
+        uint32_t done = 0;
+        tb_result r = run_steps(w, dt, left, &done);
+        w->steps += done;
+        left -= done;
+        if (r) return r;
+        if (left == 0) break;
+        w->steps_redone++;
+        if (++redo > MAX_REDO)
+            return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step still overflowed after %d "
+                           "buffer growths", MAX_REDO);
+    }
+    if (n) tb_graph_read_times(&w->graph, w->stage_ms, &w->gpu_ms);
+    return TB_OK;
+}

@@ -1,0 +1,152 @@
+/* Shapes: their records, the GPU shape table and its host copy, and the hulls the
+ * narrowphase's hull table packs. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "world/world.h"
+
+tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r)
+{
+    if (!w) {
+        *r = TB_ERROR_INVALID_ARGUMENT;
+        return NULL;
+    }
+    if (id.index1 == 0 || id.world != w->serial || id.index1 > w->shape_slots.used) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ID, "shape id {%u, %u, %u} does not name a shape "
+                     "of this world", id.index1, id.world, id.generation);
+        return NULL;
+    }
+    tb_shape_record* s = &w->shapes[id.index1 - 1];
+    if (!s->alive || s->generation != id.generation) {
+        *r = tb_fail(&w->diag, TB_ERROR_STALE_ID, "shape id {%u, %u, %u} is stale: the shape was "
+                     "destroyed", id.index1, id.world, id.generation);
+        return NULL;
+    }
+    *slot = id.index1 - 1;
+    *r = TB_OK;
+    return s;
+}
+
+static tb_result grow_shape_table(tb_world* w, uint32_t needed)
+{
+    if (needed <= w->shape_table_capacity) return TB_OK;
+    uint32_t cap = w->shape_table_capacity ? w->shape_table_capacity * 2 : 16;
+    while (cap < needed) cap *= 2;
+    tb_shape_record* records = realloc(w->shapes, cap * sizeof *records);
+    if (records) w->shapes = records;
+    tb_gpu_shape* gpu = realloc(w->gpu_shapes, cap * sizeof *gpu);
+    if (gpu) w->gpu_shapes = gpu;
+    if (!records || !gpu) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    uint32_t old = w->shape_table_capacity;
+    memset(w->shapes + old, 0, (cap - old) * sizeof *records);
+    memset(w->gpu_shapes + old, 0, (cap - old) * sizeof *gpu);
+    w->shape_table_capacity = cap;
+    return TB_OK;
+}
+
+/* Take a slot and fill both the host record and the GPU entry. */
+static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_gpu_shape* gpu,
+                           tb_shape_id* out)
+{
+    if (w->shape_slots.live >= w->max_shapes)
+        return tb_fail(&w->diag, TB_ERROR_CAPACITY, "the world holds at most %u shapes "
+                       "(tb_world_def.max_shapes)", w->max_shapes);
+    if (!w->shape_slots.free_count && grow_shape_table(w, w->shape_slots.used + 1))
+        return TB_ERROR_OUT_OF_MEMORY;
+    uint32_t slot;
+    tb_slots_take(&w->shape_slots, &slot);
+    uint16_t generation = tb_next_generation(w->shapes[slot].generation);
+    w->shapes[slot] = *record;
+    w->shapes[slot].generation = generation;
+    w->shapes[slot].alive = 1;
+    w->gpu_shapes[slot] = *gpu;
+    w->gpu_shapes[slot].material = (tb_gpu_vec4){ record->material.friction,
+                                                  record->material.restitution, 0.0f, 0.0f };
+    w->shapes_dirty = 1;
+    *out = (tb_shape_id){ slot + 1, w->serial, w->shapes[slot].generation };
+    return TB_OK;
+}
+
+/* The step records the narrowphase's hull pass only while hull shapes exist (see step.c):
+ * the first hull to come or the last to go rebuilds it. */
+static void count_hull_shape(tb_world* w, int change)
+{
+    uint32_t before = w->hull_shapes;
+    w->hull_shapes = (uint32_t)((int64_t)before + change);
+    if ((before == 0) != (w->hull_shapes == 0)) w->step_built = 0;
+}
+
+/* Hulls (boxes too) own their geometry; the hull table packs it for the GPU. */
+tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* gpu,
+                        tb_shape_id* out)
+{
+    tb_result r = add_shape(w, rec, gpu, out);
+    if (r) {
+        tb_shape_release_hull(rec);
+        return r;
+    }
+    if (!rec->hull) return TB_OK;
+    w->narrowphase.hulls.dirty = 1;
+    if (rec->type == TB_SHAPE_HULL) count_hull_shape(w, +1);
+    return TB_OK;
+}
+
+void tb_shape_release_hull(tb_shape_record* s)
+{
+    if (!s->hull) return;
+    tb_hull_free(s->hull);
+    free(s->hull);
+    s->hull = NULL;
+}
+
+void tb_shapes_remove(tb_world* w, uint32_t slot)
+{
+    tb_shape_record* s = &w->shapes[slot];
+    s->alive = 0;
+    if (s->hull) w->narrowphase.hulls.dirty = 1;
+    if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
+    tb_shape_release_hull(s);
+    tb_slots_give(&w->shape_slots, slot);
+}
+
+tb_result tb_shapes_create_buffer(tb_world* w, uint32_t capacity)
+{
+    tb_buffer_destroy(&w->memory, &w->shape_buffer);
+    tb_result r = tb_buffer_create(&w->memory, capacity * sizeof(tb_gpu_shape),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &w->shape_buffer);
+    if (r) return r;
+    w->shape_buffer_capacity = capacity;
+    tb_pipelines_bind(&w->pipelines, TB_BIND_SHAPES, w->shape_buffer.buffer);
+    tb_graph_invalidate(&w->graph);
+    w->buffer_generation++;
+    w->shapes_dirty = 1;
+    return TB_OK;
+}
+
+static const tb_hull* hull_at(const void* owner, uint32_t slot)
+{
+    const tb_shape_record* rec = &((const tb_world*)owner)->shapes[slot];
+    return rec->alive ? rec->hull : NULL;
+}
+
+/* Packing rewrites the hull shapes' locators, so the shape table goes up again too. */
+static tb_result prepare_hulls(tb_world* w)
+{
+    if (!w->narrowphase.hulls.dirty) return TB_OK;
+    tb_hull_shapes shapes = { w->shape_slots.used, hull_at, w, w->gpu_shapes };
+    int replaced = 0;
+    tb_result r = tb_hull_table_prepare(&w->narrowphase, &shapes, &replaced);
+    if (replaced) w->buffer_generation++;
+    if (!r) w->shapes_dirty = 1;
+    return r;
+}
+
+tb_result tb_world_prepare_shapes(tb_world* w)
+{
+    tb_result r = prepare_hulls(w);
+    if (r || w->shape_slots.used <= w->shape_buffer_capacity) return r;
+    uint32_t cap = w->shape_buffer_capacity * 2;
+    while (cap < w->shape_slots.used) cap *= 2;
+    return tb_shapes_create_buffer(w, cap);
+}
