@@ -1,7 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // One substep of the soft step on every dynamic body's solver record (push.args.z):
-// 0: gravity for the substep, v += g * scale * h;
+// 0: the velocities' change over the substep without contacts: gravity, v += g * scale * h,
+//    and the gyroscopic term, w turned and shifted among the body axes as Euler's equations
+//    of a torque-free body say (gyroscopic_change, in the body's current frame);
 // 1: motion, semi-implicit Euler: delta_position += v h, delta_rotation turned by the angle
 //    |w| h about w (clamped to the step's largest rotation shared among the substeps).
 // h = params.soft.w. Bodies that are not dynamic have zero inverse mass and stay put.
@@ -10,6 +12,18 @@
 #include "motion.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
+
+// The world angular velocity after the gyroscopic step, in the frame the substeps have
+// turned the body to. A body with an infinite moment (inverse 0) keeps its spin.
+vec3 gyroscopic(uint i, tb_gpu_solver_body s, float h)
+{
+    vec3 inv = body_inv_inertia[i].xyz;
+    if (any(equal(inv, vec3(0.0)))) return s.angular.xyz;
+    vec4 q = normalize(quat_mul(s.delta_rotation, body_rot[i]));
+    vec4 q_inv = vec4(-q.xyz, q.w);
+    vec3 w = quat_rotate(q_inv, s.angular.xyz);
+    return s.angular.xyz + quat_rotate(q, gyroscopic_change(w, 1.0 / inv, h));
+}
 
 void main()
 {
@@ -20,6 +34,7 @@ void main()
     float h = params.soft.w;
     if (push.args.z == 0u) {
         solver_bodies[i].linear.xyz = s.linear.xyz + params.gravity.xyz * (s.angular.w * h);
+        solver_bodies[i].angular.xyz = gyroscopic(i, s, h);
         return;
     }
     solver_bodies[i].delta_position.xyz = s.delta_position.xyz + s.linear.xyz * h;
