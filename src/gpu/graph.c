@@ -225,6 +225,10 @@ tb_result tb_graph_prepare(tb_graph* graph, VkBuffer params)
     graph->params = params;
     graph->needs_record = 0;
     graph->records++;
+    uint32_t dispatches = 0;
+    for (uint32_t i = 0; i < graph->count; i++) dispatches += graph->stages[i].pass_count;
+    tb_log(graph->gpu->diag, TB_LOG_DEBUG, "step recorded: %u stages, %u dispatches",
+           graph->count, dispatches);
     return TB_OK;
 }
 

@@ -35,6 +35,8 @@ typedef struct options {
     uint32_t every;       /* with frames: a picture every this many timed steps */
     int contacts;         /* with frames: draw contact points and normals */
     const char* plugin;   /* NULL: none; else a plugin loaded before the scene is built */
+    uint32_t substeps, iterations; /* 0: the world's defaults */
+    float hertz, damping;          /* < 0: the world's defaults */
 } options;
 
 /* Pictures of the timed steps. Rendering happens between steps, outside the timings. */
@@ -69,7 +71,8 @@ static void print_usage(FILE* f)
     fprintf(f,
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
             "             [--device D] [--broadphase B] [--plugin FILE] [--csv FILE] [--json-only]\n"
-            "             [--frames DIR [--every K] [--contacts]] [--help]\n"
+            "             [--frames DIR [--every K] [--contacts]]\n"
+            "             [--substeps S] [--iterations I] [--hertz H] [--damping Z] [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
             "  --seed        seed of the scene's jitter (default 1)\n"
@@ -82,7 +85,10 @@ static void print_usage(FILE* f)
             "  --json-only   print only the JSON line\n"
             "  --frames      write a PNG of every K-th timed step into DIR (tools/render/video\n"
             "                makes a video of them); --every defaults to 1\n"
-            "  --contacts    draw contact points and normals in the frames\n");
+            "  --contacts    draw contact points and normals in the frames\n"
+            "  --substeps, --iterations, --hertz, --damping\n"
+            "                the world's substeps, solver_iterations, contact_hertz and\n"
+            "                contact_damping_ratio (default: tb_default_world_def's)\n");
     scene_print_list(f);
 }
 
@@ -134,6 +140,15 @@ static int parse_args(int argc, char** argv, options* o)
             ok = scene_parse_u32(v, &o->seed);
         } else if (strcmp(a, "--frames") == 0) {
             o->frames = v;
+        } else if (strcmp(a, "--substeps") == 0) {
+            ok = scene_parse_u32(v, &o->substeps);
+        } else if (strcmp(a, "--iterations") == 0) {
+            ok = scene_parse_u32(v, &o->iterations);
+        } else if (strcmp(a, "--hertz") == 0 || strcmp(a, "--damping") == 0) {
+            char* end = NULL;
+            double x = strtod(v, &end);
+            ok = end != v && *end == 0 && x >= 0;
+            if (ok) *(a[2] == 'h' ? &o->hertz : &o->damping) = (float)x;
         } else if (strcmp(a, "--every") == 0) {
             ok = scene_parse_u32(v, &o->every) && o->every > 0;
         } else {
@@ -144,7 +159,7 @@ static int parse_args(int argc, char** argv, options* o)
         if (!ok) {
             fprintf(stderr, "bench: option '%s' needs a value%s\n", a,
                     !v ? "" : strcmp(a, "--broadphase") == 0 ? ": grid, sap, lbvh or isap"
-                                                             : " that is a non-negative integer");
+                                                             : " that is a non-negative number");
             return 2;
         }
         i += takes_value;
@@ -420,6 +435,20 @@ static int append_csv(const char* path, const report* r)
 
 /* ---- main ---- */
 
+/* Dispatches in the step as last recorded: the library says so at TB_LOG_DEBUG. Warnings
+ * and errors go to stderr, as without a log callback. */
+static uint32_t recorded_dispatches;
+
+static void bench_log(void* user, tb_log_level level, const char* message)
+{
+    (void)user;
+    unsigned stages, dispatches;
+    if (sscanf(message, "step recorded: %u stages, %u dispatches", &stages, &dispatches) == 2)
+        recorded_dispatches = dispatches;
+    if (level >= TB_LOG_WARNING)
+        fprintf(stderr, "tumble %s: %s\n", level == TB_LOG_ERROR ? "error" : "warning", message);
+}
+
 static tb_world* create_world(const options* o)
 {
     tb_world_def def = tb_default_world_def();
@@ -427,6 +456,11 @@ static tb_world* create_world(const options* o)
     def.initial_body_capacity = o->n <= UINT32_MAX - 16 ? o->n + 16 : o->n;
     def.device = o->device;
     def.broadphase = o->broadphase;
+    if (o->substeps) def.substeps = o->substeps;
+    if (o->iterations) def.solver_iterations = o->iterations;
+    if (o->hertz >= 0) def.contact_hertz = o->hertz;
+    if (o->damping >= 0) def.contact_damping_ratio = o->damping;
+    def.log = bench_log;
     tb_world* world = NULL;
     tb_result r = tb_world_create(&def, &world);
     if (r != TB_OK) fail(NULL, "tb_world_create", r);
@@ -464,6 +498,10 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
         code = fail(world, "tb_world_get_stats", r);
     else
         *body_count = st.body_count, *broadphase = st.broadphase;
+    if (!code && checks->count < SCENE_MAX_CHECKS) {   /* the step's dependent dispatches */
+        checks->items[checks->count].key = "dispatches";
+        checks->items[checks->count++].value = recorded_dispatches;
+    }
     tr_destroy(frames.renderer);
     sc->destroy(inst);
     return code;
@@ -471,7 +509,8 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 
 int main(int argc, char** argv)
 {
-    options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0, NULL };
+    options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0, NULL,
+                  0, 0, -1.0f, -1.0f };
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);

@@ -47,6 +47,11 @@ typedef struct pile_layout {
 pile_layout pile_layout_for(uint32_t n);
 /// Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw].
 tb_result pile_build_container(tb_world* world, const pile_layout* layout);
+/// The same of a given material.
+tb_result pile_build_container_of(tb_world* world, const pile_layout* layout,
+                                  const tb_shape_def* material);
+/// Is p outside [lo, hi] by more than the escape tolerance?
+int pile_outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi);
 /// The end of a pile's build: creates the n bodies of `defs` (then frees it), then the
 /// container, and hands the instance over; on any failure (r included) frees it instead.
 tb_result pile_finish(tb_world* world, const pile_layout* layout, tb_body_def* defs, uint32_t n,
@@ -57,6 +62,11 @@ tb_result spheres_build(tb_world* world, const scene_params* params, scene_insta
 tb_result boxes_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result mixed_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                     scene_checks* out);
+
+/* deep.c */
+tb_result deep_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result deep_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
 
 /* sizes.c */

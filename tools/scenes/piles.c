@@ -29,11 +29,11 @@ pile_layout pile_layout_for(uint32_t n)
     return l;
 }
 
-static tb_result add_static_box(tb_world* w, tb_vec3 centre, tb_vec3 half)
+static tb_result add_static_box(tb_world* w, const tb_shape_def* sd, tb_vec3 centre,
+                                tb_vec3 half)
 {
-    tb_shape_def sd = tb_default_shape_def();
     tb_shape_id shape;
-    tb_result r = tb_shape_create_box(w, &sd, half, &shape);
+    tb_result r = tb_shape_create_box(w, sd, half, &shape);
     if (r != TB_OK) return r;
     tb_body_def d = tb_default_body_def();
     d.type = TB_BODY_STATIC;
@@ -44,15 +44,21 @@ static tb_result add_static_box(tb_world* w, tb_vec3 centre, tb_vec3 half)
 }
 
 /* Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw]. */
-tb_result pile_build_container(tb_world* w, const pile_layout* l)
+tb_result pile_build_container_of(tb_world* w, const pile_layout* l, const tb_shape_def* sd)
 {
     float hw = l->half_width, hh = 0.5f * l->height, outer = hw + 2.0f * WALL;
-    tb_result r = add_static_box(w, (tb_vec3){ 0, -WALL, 0 }, (tb_vec3){ outer, WALL, outer });
-    if (r == TB_OK) r = add_static_box(w, (tb_vec3){ hw + WALL, hh, 0 }, (tb_vec3){ WALL, hh, outer });
-    if (r == TB_OK) r = add_static_box(w, (tb_vec3){ -hw - WALL, hh, 0 }, (tb_vec3){ WALL, hh, outer });
-    if (r == TB_OK) r = add_static_box(w, (tb_vec3){ 0, hh, hw + WALL }, (tb_vec3){ hw, hh, WALL });
-    if (r == TB_OK) r = add_static_box(w, (tb_vec3){ 0, hh, -hw - WALL }, (tb_vec3){ hw, hh, WALL });
+    tb_result r = add_static_box(w, sd, (tb_vec3){ 0, -WALL, 0 }, (tb_vec3){ outer, WALL, outer });
+    if (r == TB_OK) r = add_static_box(w, sd, (tb_vec3){ hw + WALL, hh, 0 }, (tb_vec3){ WALL, hh, outer });
+    if (r == TB_OK) r = add_static_box(w, sd, (tb_vec3){ -hw - WALL, hh, 0 }, (tb_vec3){ WALL, hh, outer });
+    if (r == TB_OK) r = add_static_box(w, sd, (tb_vec3){ 0, hh, hw + WALL }, (tb_vec3){ hw, hh, WALL });
+    if (r == TB_OK) r = add_static_box(w, sd, (tb_vec3){ 0, hh, -hw - WALL }, (tb_vec3){ hw, hh, WALL });
     return r;
+}
+
+tb_result pile_build_container(tb_world* w, const pile_layout* l)
+{
+    tb_shape_def sd = tb_default_shape_def();
+    return pile_build_container_of(w, l, &sd);
 }
 
 tb_vec3 pile_grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
@@ -121,7 +127,7 @@ tb_result mixed_build(tb_world* w, const scene_params* params, scene_instance** 
     return pile_build(w, params, PILE_MIXED, out);
 }
 
-static int outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi)
+int pile_outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi)
 {
     float t = ESCAPE_TOLERANCE;
     return p.x < lo.x - t || p.y < lo.y - t || p.z < lo.z - t ||
@@ -167,7 +173,7 @@ tb_result pile_check(tb_world* w, const scene_instance* inst, uint32_t steps, fl
     for (uint32_t i = 0; r == TB_OK && i < n; i++) {
         tb_vec3 v, w_;
         if (!scene_vec3_finite(pos[i]) || !scene_quat_finite(rot[i])) nan++;
-        else if (outside(pos[i], inst->box_min, inst->box_max)) escaped++;
+        else if (pile_outside(pos[i], inst->box_min, inst->box_max)) escaped++;
         r = tb_body_get_velocity(w, inst->ids[i], &v, &w_);
         if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < REST_SPEED) resting++;
     }

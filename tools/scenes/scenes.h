@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include "tumble.h"
 
-#define SCENE_MAX_CHECKS 8
+#define SCENE_MAX_CHECKS 12
 
 /// Named figures a scene reports after a run, e.g. {"nan", 0}, {"escaped", 0}.
 typedef struct scene_checks {
