@@ -189,11 +189,15 @@ static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeli
 }
 
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
-                                         VkBuffer counters, int hull_shapes)
+                                         VkBuffer counters)
 {
-    tb_result r = per_pair(np, list, np->contacts, counters);
-    if (!r && hull_shapes) r = per_pair(np, list, np->hull_points, counters);
-    return r;
+    return per_pair(np, list, np->contacts, counters);
+}
+
+tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
+                                            VkBuffer counters)
+{
+    return per_pair(np, list, np->hull_points, counters);
 }
 
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,

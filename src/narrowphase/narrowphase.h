@@ -56,10 +56,13 @@ typedef struct tb_hull_shapes {
 tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced);
 void tb_narrowphase_destroy(tb_narrowphase* np);
 
-/// narrowphase/contacts, then narrowphase/hull_points when `hull_shapes`; `counters` is the
-/// buffer bound at TB_BIND_COUNTERS.
+/// narrowphase/contacts; `counters` is the buffer bound at TB_BIND_COUNTERS.
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
-                                         VkBuffer counters, int hull_shapes);
+                                         VkBuffer counters);
+/// narrowphase/hull_points, the points of the touching hull pairs (recorded only while the
+/// world has hull shapes).
+tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
+                                            VkBuffer counters);
 /// narrowphase/keep.
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
                                      VkBuffer counters);

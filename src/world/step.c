@@ -88,14 +88,17 @@ static void broadphase_stage(builder* b)
     end_stage(b, "broadphase/pairs");
 }
 
-/* Manifolds of every pair, then the points of the touching hull pairs (see contacts.comp),
- * a pass recorded only while the world has hull shapes (box pairs never defer theirs). */
+/* Manifolds of every pair (narrowphase/contacts), then the points of the touching hull pairs
+ * (narrowphase/hull_points, see contacts.comp), a stage of its own so the stats tell the two
+ * apart, recorded only while the world has hull shapes (box pairs never defer theirs). */
 static void narrowphase_stage(builder* b)
 {
     tb_world* w = b->w;
-    if (!b->r) b->r = tb_narrowphase_record_contacts(&w->narrowphase, &b->list, b->counters,
-                                                     w->hull_shapes != 0);
+    if (!b->r) b->r = tb_narrowphase_record_contacts(&w->narrowphase, &b->list, b->counters);
     end_stage(b, "narrowphase/contacts");
+    if (!w->hull_shapes) return;
+    if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list, b->counters);
+    end_stage(b, "narrowphase/hull_points");
 }
 
 static void keep_stage(builder* b)
