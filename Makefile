@@ -2,6 +2,8 @@
 #   make            build libtumble.so / libtumble.a (SPIR-V embedded) and the tools
 #   make deps       install missing Debian packages
 #   make test       build and run the tests on lavapipe with the validation layers on
+#   make install [PREFIX=/usr/local] [DESTDIR=] [INSTALL_LIBS="shared static"]
+#                   headers, libtumble.so.X.Y.Z with its soname links, libtumble.a, tumble.pc
 #   make abi-check  compare libtumble.so with the ABI baseline in abi/ (part of make test)
 #   make check-layers  the include arrows of src/ run one way (DESIGN.md §2; part of make test)
 #   make run        install, build, run the default scene
@@ -23,6 +25,11 @@ SHADERC_LIBS := -lshaderc_combined -lglslang -lMachineIndependent -lOSDependent 
                 -lGenericCodeGen -lOGLCompiler -lSPIRV -lSPIRV-Tools-opt -lSPIRV-Tools \
                 -lstdc++ -lpthread
 LIBS    := -lvulkan $(SHADERC_LIBS) -ldl -lm
+# The version, read from tumble.h: the shared library is libtumble.so.MAJOR.MINOR.PATCH with
+# the soname libtumble.so.MAJOR; libtumble.so links to it, in the build tree and installed.
+version_part = $(shell sed -n 's/^\#define TB_VERSION_$(1) \([0-9][0-9]*\).*/\1/p' include/tumble.h)
+VERSION := $(call version_part,MAJOR).$(call version_part,MINOR).$(call version_part,PATCH)
+SONAME  := libtumble.so.$(call version_part,MAJOR)
 GLSLANG ?= glslangValidator
 SPIRVVAL ?= spirv-val
 
@@ -56,7 +63,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers
+.PHONY: all deps test run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers print-libs FORCE
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -105,13 +112,70 @@ $(BUILD)/obj/%.o: $(BUILD)/%.c
 
 EMBEDDED_OBJ := $(BUILD)/obj/shaders.o $(BUILD)/obj/glsl_headers.o
 
-$(BUILD)/libtumble.so: $(LIB_OBJ) $(EMBEDDED_OBJ) abi/tumble.map
+$(BUILD)/libtumble.so.$(VERSION): $(LIB_OBJ) $(EMBEDDED_OBJ) abi/tumble.map
 	$(call say,LD,$@)
-	$(Q)$(CC) -shared -o $@ $(LIB_OBJ) $(EMBEDDED_OBJ) -Wl,--version-script=abi/tumble.map -Wl,-soname,libtumble.so.0 $(LIBS)
+	$(Q)$(CC) -shared -o $@ $(LIB_OBJ) $(EMBEDDED_OBJ) -Wl,--version-script=abi/tumble.map -Wl,-soname,$(SONAME) $(LIBS)
+
+$(BUILD)/libtumble.so: $(BUILD)/libtumble.so.$(VERSION)
+	$(Q)ln -sf libtumble.so.$(VERSION) $(BUILD)/$(SONAME) && ln -sf $(SONAME) $@
 
 $(BUILD)/libtumble.a: $(LIB_OBJ) $(EMBEDDED_OBJ)
 	$(call say,AR,$@)
 	$(Q)rm -f $@ && ar rcs $@ $^
+
+# --- install: headers, the libraries, tumble.pc ------------------------------------------
+PREFIX     ?= /usr/local
+LIBDIR     ?= $(PREFIX)/lib
+INCLUDEDIR ?= $(PREFIX)/include
+GLSLDIR    ?= $(PREFIX)/share/tumble/glsl
+INSTALL_LIBS ?= shared static
+DESTDIR    ?=
+
+$(BUILD)/tumble.pc: tools/install/tumble.pc.in include/tumble.h Makefile FORCE
+	@sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@LIBDIR@|$(LIBDIR)|' -e 's|@INCLUDEDIR@|$(INCLUDEDIR)|' \
+	    -e 's|@GLSLDIR@|$(GLSLDIR)|' -e 's|@VERSION@|$(VERSION)|' \
+	    -e 's|@LIBS_PRIVATE@|$(SHADERC_LIBS) -ldl -lm|' $< > $@.tmp && mv $@.tmp $@
+
+install: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(BUILD)/tumble.pc
+	$(call say,INSTALL,$(DESTDIR)$(PREFIX))
+	$(Q)install -d $(DESTDIR)$(INCLUDEDIR) $(DESTDIR)$(LIBDIR)/pkgconfig $(DESTDIR)$(GLSLDIR)
+	$(Q)install -m 644 include/tumble.h include/tumble_vulkan.h abi/tumble_plugin.h $(DESTDIR)$(INCLUDEDIR)
+	$(Q)install -m 644 abi/tumble_plugin.glsl glsl/common/layout.h $(DESTDIR)$(GLSLDIR)
+	$(Q)install -m 644 $(BUILD)/tumble.pc $(DESTDIR)$(LIBDIR)/pkgconfig/tumble.pc
+	$(Q)if echo "$(INSTALL_LIBS)" | grep -qw static; then \
+	  install -m 644 $(BUILD)/libtumble.a $(DESTDIR)$(LIBDIR); fi
+	$(Q)if echo "$(INSTALL_LIBS)" | grep -qw shared; then \
+	  install -m 755 $(BUILD)/libtumble.so.$(VERSION) $(DESTDIR)$(LIBDIR) && \
+	  ln -sf libtumble.so.$(VERSION) $(DESTDIR)$(LIBDIR)/$(SONAME) && \
+	  ln -sf $(SONAME) $(DESTDIR)$(LIBDIR)/libtumble.so; fi
+
+# make install must give a library others can build with: install into a temporary prefix,
+# build the README's example against it through pkg-config and run it (shared library, only
+# the prefix's lib dir on the loader's path), and link it statically from a static-only
+# prefix through pkg-config --static.
+INSTALL_TEST := $(abspath $(BUILD))/install-test
+check-install: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(BUILD)/readme/example.c
+	$(call say,CHECK,install)
+	$(Q)rm -rf $(INSTALL_TEST)
+	$(Q)$(MAKE) --no-print-directory -s install PREFIX=$(INSTALL_TEST)/shared >/dev/null
+	$(Q)$(MAKE) --no-print-directory -s install PREFIX=$(INSTALL_TEST)/static INSTALL_LIBS=static >/dev/null
+	$(Q)export PKG_CONFIG_PATH=$(INSTALL_TEST)/shared/lib/pkgconfig; \
+	  $(CC) $(CSTD) $(WARN) -Werror -o $(INSTALL_TEST)/example-shared $(BUILD)/readme/example.c \
+	    $$(pkg-config --cflags --libs tumble) && \
+	  [ "$$(pkg-config --modversion tumble)" = $(VERSION) ] && \
+	  readelf -d $(INSTALL_TEST)/example-shared | grep -q 'NEEDED.*$(SONAME)' && \
+	  env $(TEST_ENV) LD_LIBRARY_PATH=$(INSTALL_TEST)/shared/lib $(INSTALL_TEST)/example-shared >/dev/null
+	$(Q)export PKG_CONFIG_PATH=$(INSTALL_TEST)/static/lib/pkgconfig; \
+	  $(CC) $(CSTD) $(WARN) -Werror -o $(INSTALL_TEST)/example-static $(BUILD)/readme/example.c \
+	    $$(pkg-config --static --cflags --libs tumble) && \
+	  ! readelf -d $(INSTALL_TEST)/example-static | grep -q 'NEEDED.*libtumble' && \
+	  env $(TEST_ENV) $(INSTALL_TEST)/example-static >/dev/null
+
+FORCE:
+
+# The libraries a program linked with build/libtumble.a needs after it.
+print-libs:
+	@echo $(LIBS)
 
 # --- tools and tests --------------------------------------------------------------------
 TOOL_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -Itools/scenes -Itools/render -Itools/render/shaders -Itests -Iglsl/common -I$(BUILD) $(RENDER_DEFS)
@@ -196,7 +260,7 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 # both at once (a test keeps about one core busy); their outputs follow each other.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
 TEST_LOGS := $(BUILD)/test-logs
-test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme abi-check check-abi-break check-python
+test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install abi-check check-abi-break check-python
 	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
@@ -253,10 +317,12 @@ check-exports: $(BUILD)/libtumble.so
 	if [ -n "$$bad" ]; then echo "non-tb_ symbols exported: $$bad"; exit 1; fi
 
 # The README's C example must compile warning-free and run.
-check-readme: $(BUILD)/libtumble.a
-	$(call say,CHECK,README.md)
+$(BUILD)/readme/example.c: README.md
 	@mkdir -p $(BUILD)/readme
-	$(Q)awk '/^```c$$/{f=1;next} /^```$$/{f=0} f' README.md > $(BUILD)/readme/example.c
+	$(Q)awk '/^```c$$/{f=1;next} /^```$$/{f=0} f' README.md > $@
+
+check-readme: $(BUILD)/libtumble.a $(BUILD)/readme/example.c
+	$(call say,CHECK,README.md)
 	$(Q)$(CC) $(CSTD) $(WARN) -Werror -Iinclude -o $(BUILD)/readme/example $(BUILD)/readme/example.c $(BUILD)/libtumble.a $(LIBS)
 	$(Q)env $(TEST_ENV) $(BUILD)/readme/example >/dev/null
 

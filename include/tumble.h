@@ -31,6 +31,19 @@ extern "C" {
 #endif
 
 /* ---------------------------------------------------------------------------------------
+ * Version: MAJOR changes break the ABI (the shared library's soname is libtumble.so.MAJOR),
+ * MINOR adds to it, PATCH fixes. The Makefile reads these lines.
+ */
+#define TB_VERSION_MAJOR 0
+#define TB_VERSION_MINOR 1
+#define TB_VERSION_PATCH 0
+/// A version as one number: major << 22 | minor << 12 | patch (Vulkan's packing).
+#define TB_MAKE_VERSION(major, minor, patch) \
+    (((uint32_t)(major) << 22) | ((uint32_t)(minor) << 12) | (uint32_t)(patch))
+/// The version this header belongs to.
+#define TB_VERSION TB_MAKE_VERSION(TB_VERSION_MAJOR, TB_VERSION_MINOR, TB_VERSION_PATCH)
+
+/* ---------------------------------------------------------------------------------------
  * Basic types
  */
 
@@ -55,6 +68,10 @@ typedef enum tb_result {
 
 /// Sentence naming a result code ("invalid argument", ...). Never NULL.
 TB_API const char* tb_result_string(tb_result result);
+
+/// The version of the library running (TB_MAKE_VERSION packing), which may be newer than
+/// the header a program was built with (TB_VERSION) within the same major version.
+TB_API uint32_t tb_version(void);
 
 typedef struct tb_world tb_world;
 

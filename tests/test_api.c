@@ -103,6 +103,17 @@ static void assert_has_error_text(const tb_world* w, const char* what)
 
 /* ---- result strings --------------------------------------------------------------------- */
 
+/* The library's version is the header's (tests link the library they were built with), in
+ * Vulkan's packing. */
+static void test_version(void** state)
+{
+    (void)state;
+    assert_int_equal(tb_version(), TB_VERSION);
+    assert_int_equal(TB_VERSION >> 22, TB_VERSION_MAJOR);
+    assert_int_equal((TB_VERSION >> 12) & 0x3ff, TB_VERSION_MINOR);
+    assert_int_equal(TB_VERSION & 0xfff, TB_VERSION_PATCH);
+}
+
 static void test_result_strings(void** state)
 {
     (void)state;
@@ -619,6 +630,7 @@ int main(void)
 {
 #define T(f) cmocka_unit_test_setup_teardown(f, fx_setup, fx_teardown)
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_version),
         cmocka_unit_test(test_result_strings),
         T(test_bad_body_defs),
         T(test_quaternion_tolerance),

@@ -85,6 +85,11 @@ const char* tb_result_string(tb_result result)
     }
 }
 
+uint32_t tb_version(void)
+{
+    return TB_VERSION;
+}
+
 tb_result tb_world_set_gravity(tb_world* w, tb_vec3 gravity)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
