@@ -59,9 +59,12 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       (xyz outward unit normal, w offset: dot(n, x) = w on the face) */
 #define TB_BIND_HULL_TOPOLOGY   23 /* uint[]: each hull's edges (2 uints each: v0 | v1 << 16, then
                                       f0 | f1 << 16: the faces left and right of v0 -> v1 seen from
-                                      outside), then its faces (first | count << 16: the face's
-                                      vertex indices at topology[face base + first ...], counter-
-                                      clockwise seen from outside), then those indices */
+                                      outside), then its vertex rings (a head per vertex, first |
+                                      count << 16 counted from the entries that follow the heads;
+                                      an entry per edge end, neighbour | edge << 16), then its
+                                      faces (first | count << 16: the face's vertex indices at
+                                      topology[face base + first ...], counter-clockwise seen from
+                                      outside), then those indices */
 #define TB_BIND_COLOUR_WORK     24 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
                                       (each pair cap long) the colouring passes read and
                                       write in turn (tb_gpu_counters.colouring counts them) */

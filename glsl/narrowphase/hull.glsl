@@ -56,6 +56,41 @@ uvec2 np_hull_edge_faces(np_hull h, uint e)
     return np_unpack16(hull_topology[h.base.z + 2u * e + 1u]);
 }
 
+// The ring of vertex i: x its first entry, y how many (one per edge at the vertex).
+uvec2 np_hull_ring(np_hull h, uint i)
+{
+    return np_unpack16(hull_topology[h.base.z + 2u * h.edges + i]);
+}
+
+// Entry k of the rings: x the neighbouring vertex, y the edge to it.
+uvec2 np_hull_ring_entry(np_hull h, uint k)
+{
+    return np_unpack16(hull_topology[h.base.z + 2u * h.edges + h.vertices + k]);
+}
+
+// The vertex of h farthest along d, climbing from vertex `start` to a neighbour farther
+// along d while there is one: on a convex hull the climb ends at the farthest vertex.
+uint np_hull_support(np_hull h, vec3 d, uint start)
+{
+    uint v = start;
+    float best = dot(d, np_hull_vertex(h, v));
+    for (uint steps = 0u; steps < h.vertices; steps++) {
+        uvec2 ring = np_hull_ring(h, v);
+        uint next = v;
+        for (uint k = 0u; k < ring.y; k++) {
+            uint w = np_hull_ring_entry(h, ring.x + k).x;
+            float s = dot(d, np_hull_vertex(h, w));
+            if (s > best) {
+                best = s;
+                next = w;
+            }
+        }
+        if (next == v) break;
+        v = next;
+    }
+    return v;
+}
+
 // x where the face's vertex indices start (from the face base), y how many; the count is
 // bounded so a private polygon of the clipper can hold it.
 uvec2 np_hull_face(np_hull h, uint f)

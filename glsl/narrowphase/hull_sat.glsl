@@ -114,6 +114,54 @@ vec4 np_edge_axis(np_edge a, np_hull b, uint j, vec3 ca)
     return vec4(n, dot(n, pb - a.p));
 }
 
+// The edges of B whose arcs an edge of A crosses on the Gauss maps are found by a walk, not
+// by trying every edge of B. Negating both arcs keeps crossings, so they are B's edges whose
+// arcs the arc from -u to -v (A's face normals negated) crosses on B's own Gauss map, where
+// a vertex w of B owns the directions along which it is B's farthest vertex. The walk starts
+// at B's farthest vertex along -u and follows d(t) = -((1 - t) u + t v), t from 0 to 1: it
+// leaves vertex w for the neighbour w' (over edge w-w') that overtakes w first, where
+// dot(d(t), w' - w) turns positive, at t = a / (a - c) with a = dot(u, w' - w) and
+// c = dot(v, w' - w) (w' overtakes only if c < 0). Each edge it crosses is tested as before
+// (np_edge_axis, which still applies the exact arc test), so a touching pair tests a handful
+// of B's edges per edge of A instead of all of them. `start` is where the climb to the first
+// vertex begins; the walk's last vertex comes back in it (the next edge of A usually starts
+// near there).
+float np_walk_edges(np_edge edge, uint i, np_hull b, vec3 ca, vec3 u, vec3 v, float margin,
+                    inout uint start, inout float best, inout uint best_a, inout uint best_b)
+{
+    uint w = np_hull_support(b, -u, start);
+    float t = 0.0;
+    for (uint steps = 0u; steps < b.edges; steps++) {
+        vec3 pw = np_hull_vertex(b, w);
+        uvec2 ring = np_hull_ring(b, w);
+        float first = 2.0;
+        uvec2 exit = uvec2(w, 0u);
+        for (uint k = 0u; k < ring.y; k++) {
+            uvec2 entry = np_hull_ring_entry(b, ring.x + k);
+            vec3 step = np_hull_vertex(b, entry.x) - pw;
+            float a = dot(u, step), c = dot(v, step);
+            if (c >= 0.0) continue;
+            float at = max(a, 0.0) / (max(a, 0.0) - c);
+            if (at >= t && at < first) {
+                first = at;
+                exit = entry;
+            }
+        }
+        if (exit.x == w) break;
+        float s = np_edge_axis(edge, b, exit.y, ca).w;
+        if (s > best) {
+            best = s;
+            best_a = i;
+            best_b = exit.y;
+            if (s >= margin) break;
+        }
+        w = exit.x;
+        t = first;
+    }
+    start = w;
+    return best;
+}
+
 // The edge pair separating A and B most; stops at the first beyond the margin.
 float np_best_edges(np_hull a, np_hull b, np_frame a_in_b, float margin, out uint best_a,
                     out uint best_b)
@@ -121,17 +169,12 @@ float np_best_edges(np_hull a, np_hull b, np_frame a_in_b, float margin, out uin
     float best = -NP_BIG;
     best_a = 0u;
     best_b = 0u;
+    uint start = 0u;
     for (uint i = 0u; i < a.edges; i++) {
         np_edge edge = np_load_edge_a(a, i, a_in_b);
-        for (uint j = 0u; j < b.edges; j++) {
-            float s = np_edge_axis(edge, b, j, a_in_b.pos).w;
-            if (s > best) {
-                best = s;
-                best_a = i;
-                best_b = j;
-                if (s >= margin) return best;
-            }
-        }
+        np_walk_edges(edge, i, b, a_in_b.pos, edge.u, edge.v, margin, start, best, best_a,
+                      best_b);
+        if (best >= margin) return best;
     }
     return best;
 }

@@ -12,10 +12,44 @@ static uint32_t hull_vector_count(const tb_hull* h)
     return h->vertex_count + h->face_count;
 }
 
-/* Edges (two words each), face entries, face vertex indices. */
+/* Edges (two words each), each vertex's ring (a head per vertex, an entry per edge end),
+ * face entries, face vertex indices. */
 static uint32_t hull_topology_count(const tb_hull* h)
 {
-    return 2 * h->edge_count + h->face_count + h->index_count;
+    return 2 * h->edge_count + h->vertex_count + 2 * h->edge_count + h->face_count +
+           h->index_count;
+}
+
+/* Each vertex's ring at `abase`: a head per vertex (first | count << 16, the first counted
+ * from the entries, which follow the heads), then per edge end an entry (neighbour | edge
+ * << 16), so the narrowphase can walk from vertex to vertex (support points, Gauss maps). */
+static void pack_rings(uint32_t* topology, const tb_hull* h, uint32_t abase)
+{
+    uint32_t* heads = topology + abase;
+    uint32_t* entries = heads + h->vertex_count;
+    for (uint32_t v = 0; v < h->vertex_count; v++) heads[v] = 0;
+    for (uint32_t e = 0; e < h->edge_count; e++) {
+        heads[h->edges[e].v0] += 1u << 16;
+        heads[h->edges[e].v1] += 1u << 16;
+    }
+    uint32_t first = 0;
+    for (uint32_t v = 0; v < h->vertex_count; v++) {
+        uint32_t count = heads[v] >> 16;
+        heads[v] = first;   /* filled from here; the count is set back below */
+        first += count;
+    }
+    for (uint32_t e = 0; e < h->edge_count; e++) {
+        const tb_hull_edge* edge = &h->edges[e];
+        entries[heads[edge->v0]++] = edge->v1 | e << 16;
+        entries[heads[edge->v1]++] = edge->v0 | e << 16;
+    }
+    /* heads[v] now ends where v's ring ends: its start is the previous vertex's end. */
+    uint32_t start = 0;
+    for (uint32_t v = 0; v < h->vertex_count; v++) {
+        uint32_t end = heads[v];
+        heads[v] = start | (end - start) << 16;
+        start = end;
+    }
 }
 
 static tb_result create_buffer(tb_narrowphase* np, uint32_t binding, VkDeviceSize bytes,
@@ -96,8 +130,9 @@ static void pack_hull(tb_hull_table* t, const tb_hull* h, uint32_t vbase, uint32
         t->topology[tbase + 2 * e] = edge->v0 | (uint32_t)edge->v1 << 16;
         t->topology[tbase + 2 * e + 1] = edge->left | (uint32_t)edge->right << 16;
     }
+    pack_rings(t->topology, h, tbase + 2 * h->edge_count);
     /* Face entries, then the indices; a face's first index counts from the face base. */
-    uint32_t fbase = tbase + 2 * h->edge_count;
+    uint32_t fbase = tbase + 2 * h->edge_count + h->vertex_count + 2 * h->edge_count;
     for (uint32_t f = 0; f < h->face_count; f++)
         t->topology[fbase + f] = (h->face_count + h->faces[f].first) | h->faces[f].count << 16;
     for (uint32_t i = 0; i < h->index_count; i++)
