@@ -4,6 +4,7 @@
 #   make test       build and run the tests on lavapipe with the validation layers on
 #   make install [PREFIX=/usr/local] [DESTDIR=] [INSTALL_LIBS="shared static"]
 #                   headers, libtumble.so.X.Y.Z with its soname links, libtumble.a, tumble.pc
+#   make examples   build examples/ against a temporary install, through pkg-config
 #   make abi-check  compare libtumble.so with the ABI baseline in abi/ (part of make test)
 #   make check-layers  the include arrows of src/ run one way (DESIGN.md §2; part of make test)
 #   make run        install, build, run the default scene
@@ -63,7 +64,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers print-libs FORCE
+.PHONY: all deps test run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers print-libs examples check-examples FORCE
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -171,6 +172,30 @@ check-install: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(BUILD)/readme/exampl
 	  ! readelf -d $(INSTALL_TEST)/example-static | grep -q 'NEEDED.*libtumble' && \
 	  env $(TEST_ENV) $(INSTALL_TEST)/example-static >/dev/null
 
+# examples/ built as a user builds them: against a temporary install, through pkg-config;
+# make test runs them (check-examples).
+EXAMPLES_DIR    := $(abspath $(BUILD))/examples
+EXAMPLES_PREFIX := $(EXAMPLES_DIR)/prefix
+EXAMPLE_PROGRAMS := hello pile hull contacts plugin
+examples: $(BUILD)/libtumble.so $(BUILD)/libtumble.a
+	$(call say,BUILD,examples)
+	$(Q)rm -rf $(EXAMPLES_DIR) && mkdir -p $(EXAMPLES_DIR)
+	$(Q)$(MAKE) --no-print-directory -s install PREFIX=$(EXAMPLES_PREFIX) >/dev/null
+	$(Q)export PKG_CONFIG_PATH=$(EXAMPLES_PREFIX)/lib/pkgconfig; \
+	  for e in $(EXAMPLE_PROGRAMS); do \
+	    $(CC) $(CSTD) $(WARN) -Werror -o $(EXAMPLES_DIR)/$$e examples/$$e.c \
+	      $$(pkg-config --cflags --libs tumble) -lm || exit 1; \
+	  done; \
+	  $(CC) $(CSTD) $(WARN) -Werror -shared -fPIC -o $(EXAMPLES_DIR)/plugin_counter.so \
+	    examples/plugin_counter.c $$(pkg-config --cflags tumble)
+
+check-examples: examples
+	$(call say,CHECK,examples)
+	$(Q)cd $(EXAMPLES_DIR) && for e in $(EXAMPLE_PROGRAMS); do \
+	  env $(TEST_ENV) LD_LIBRARY_PATH=$(EXAMPLES_PREFIX)/lib ./$$e > $$e.out 2>&1 || \
+	    { cat $$e.out; echo "examples/$$e.c failed"; exit 1; }; \
+	done
+
 FORCE:
 
 # The libraries a program linked with build/libtumble.a needs after it.
@@ -260,7 +285,7 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 # both at once (a test keeps about one core busy); their outputs follow each other.
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
 TEST_LOGS := $(BUILD)/test-logs
-test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install abi-check check-abi-break check-python
+test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install check-examples abi-check check-abi-break check-python
 	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
 	for t in $(TEST_BIN); do \
 	  for width in 256 128; do \
