@@ -511,6 +511,7 @@ int main(int argc, char** argv)
 {
     options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0, NULL,
                   0, 0, -1.0f, -1.0f };
+    setvbuf(stdout, NULL, _IOLBF, 0);   /* progress shows line by line, piped too */
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = scene_find(o.scene_name ? o.scene_name : scene_default()->name);

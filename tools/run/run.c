@@ -278,6 +278,7 @@ static int create_world(const tb_world_def* def, int window, tb_world** out)
 int main(int argc, char** argv)
 {
     options o = { NULL, 0, 0, NULL, 0, 0 };
+    setvbuf(stdout, NULL, _IOLBF, 0);   /* progress shows line by line, piped too */
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;
     const scene* sc = o.scene_name ? scene_find(o.scene_name) : scene_default();

@@ -23,11 +23,17 @@ _ROOT = os.path.normpath(os.path.join(_HERE, "..", "..", ".."))
 
 
 def _declarations(header_text):
-    """The header as cffi takes it: no preprocessor lines but integer #defines, no blocks
-    for C++ or for building the library, no static constants, TB_API gone."""
-    out, skipping = [], 0
+    """The header as cffi takes it: no preprocessor lines (continued ones included) but
+    integer #defines, no blocks for C++ or for building the library, no static constants,
+    TB_API gone."""
+    out, skipping, continued = [], 0, False
     for line in header_text.splitlines():
         s = line.strip()
+        if continued:  # the rest of a preprocessor line that ended with a backslash
+            continued = s.endswith("\\")
+            continue
+        if s.startswith("#"):
+            continued = s.endswith("\\")
         if s.startswith("#if") and ("__cplusplus" in s or "TB_BUILDING_LIBRARY" in s):
             skipping += 1
         elif skipping and s.startswith("#endif"):
