@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "render.h"
 #include "render_layout.h"   /* the contact overlay's colours and sizes */
@@ -170,6 +171,16 @@ static void check_box_region(const tr_camera* c, const uint8_t* rgba)
     if (disc_box < disc * 0.98) fail_msg("centre disc: %u of %u box-coloured", disc_box, disc);
 }
 
+/* A PNG path of this process's own: make test runs each binary at two widths at once. */
+static const char* png_path(const char* name)
+{
+    static char path[4][256];
+    static int next;
+    char* out = path[next++ % 4];
+    snprintf(out, sizeof path[0], "/tmp/tumble_render_%s.%ld.png", name, (long)getpid());
+    return out;
+}
+
 static void check_png(const char* path)
 {
     FILE* f = fopen(path, "rb");
@@ -202,8 +213,10 @@ static void test_box_on_plane(void** state)
     th_assert_result(tr_read_pixels(r, rgba), TB_ERROR_INVALID_ARGUMENT);  /* no frame yet */
     render(r, w);
     th_assert_ok(tr_read_pixels(r, rgba));
-    th_assert_ok(tr_write_png(r, "/tmp/tumble_render_box.png"));
-    check_png("/tmp/tumble_render_box.png");
+    const char* png = png_path("box");
+    th_assert_ok(tr_write_png(r, png));
+    check_png(png);
+    remove(png);
 
     tr_camera c = tr_last_camera(r);
     th_assert_vec3_near(c.eye, o.camera.eye, 0, 0);
@@ -228,7 +241,7 @@ static void test_box_on_plane(void** state)
     th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
     render(r, w);
     th_assert_ok(tr_read_pixels(r, rgba));
-    th_assert_ok(tr_write_png(r, "/tmp/tumble_render_aabb.png"));
+    th_assert_ok(tr_write_png(r, png_path("aabb")));
     expect_at(&c, rgba, centre, is_box, "the box centre (second frame)");
 
     free(rgba);
@@ -411,7 +424,7 @@ static void test_contacts_overlay(void** state)
         uint32_t n = read_contacts(w, contacts);
         render(r, w);
         th_assert_ok(tr_read_pixels(r, rgba));
-        if (frame == 0) th_assert_ok(tr_write_png(r, "/tmp/tumble_render_contacts.png"));
+        if (frame == 0) th_assert_ok(tr_write_png(r, png_path("contacts")));
         tr_camera c = tr_last_camera(r);
         check_contacts_drawn(&c, rgba, contacts, n);
     }
@@ -490,7 +503,7 @@ static void test_automatic_camera(void** state)
     uint8_t* rgba = malloc((size_t)W * H * 4);
     assert_non_null(rgba);
     th_assert_ok(tr_read_pixels(r, rgba));
-    th_assert_ok(tr_write_png(r, "/tmp/tumble_render_spheres.png"));
+    th_assert_ok(tr_write_png(r, png_path("spheres")));
     tr_camera c = tr_last_camera(r);
     assert_true(c.automatic);
     for (int i = 0; i < 5; i++) {
