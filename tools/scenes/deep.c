@@ -16,7 +16,6 @@
 #define DEEP_HALF 0.5f       /* box half extent, m */
 #define DEEP_WALLS 10.0f     /* m */
 #define DEEP_FRICTION 0.5f
-#define REST_SPEED 0.1f      /* m/s */
 
 static pile_layout deep_layout(uint32_t n)
 {
@@ -43,17 +42,9 @@ tb_result deep_build(tb_world* w, const scene_params* params, scene_instance** o
         defs[i].shape = box;
         defs[i].position = pile_grid_slot(&l, i, &rng);
     }
-    if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
-    if (r == TB_OK) r = pile_build_container_of(w, &l, &sd);
-    free(defs);
-    if (r != TB_OK) {
-        instance_free(inst);
-        return r;
-    }
-    inst->box_min = (tb_vec3){ -l.half_width, 0.0f, -l.half_width };
-    inst->box_max = (tb_vec3){ l.half_width, INFINITY, l.half_width };
-    *out = inst;
-    return TB_OK;
+    r = pile_finish_of(w, &l, &sd, defs, n, r, inst, out);
+    if (r == TB_OK) (*out)->box_max.y = INFINITY;   /* above the walls is still inside */
+    return r;
 }
 
 /* The top of the highest box over each start cell, and how many cells hold any. */
@@ -93,33 +84,17 @@ tb_result deep_check(tb_world* w, const scene_instance* inst, uint32_t steps, fl
 {
     (void)steps;
     (void)dt;
-    uint32_t n = inst->count;
-    tb_vec3* pos = malloc((n ? n : 1) * sizeof *pos);
-    tb_quat* rot = malloc((n ? n : 1) * sizeof *rot);
-    tb_vec3* vel = malloc((n ? n : 1) * sizeof *vel);
-    tb_result r = pos && rot && vel ? TB_OK : TB_ERROR_OUT_OF_MEMORY;
-    if (r == TB_OK && n) r = tb_world_read_transforms(w, inst->ids, n, pos, rot);
-    uint32_t nan = 0, escaped = 0, resting = 0;
-    for (uint32_t i = 0; r == TB_OK && i < n; i++) {
-        tb_vec3 av;
-        if (!scene_vec3_finite(pos[i]) || !scene_quat_finite(rot[i])) nan++;
-        else if (pile_outside(pos[i], inst->box_min, inst->box_max)) escaped++;
-        r = tb_body_get_velocity(w, inst->ids[i], &vel[i], &av);
-        float speed = sqrtf(vel[i].x * vel[i].x + vel[i].y * vel[i].y + vel[i].z * vel[i].z);
-        if (r == TB_OK && speed < REST_SPEED) resting++;
-    }
-    double depth = 0.0;
-    if (r == TB_OK) r = scene_max_penetration(w, &depth);
+    tb_vec3* pos = malloc((inst->count ? inst->count : 1) * sizeof *pos);
+    pile_counts counts;
+    tb_result r = pos ? pile_census(w, inst, pos, &counts) : TB_ERROR_OUT_OF_MEMORY;
     if (r == TB_OK) {
         out->count = 0;
-        scene_put(out, "nan", nan);
-        scene_put(out, "escaped", escaped);
-        scene_put(out, "resting", n ? (double)resting / n : 1.0);
-        scene_put(out, "max_penetration", depth);
+        scene_put(out, "nan", counts.nan);
+        scene_put(out, "escaped", counts.escaped);
+        scene_put(out, "resting", counts.resting);
+        scene_put(out, "max_penetration", counts.max_penetration);
         column_heights(inst, pos, out);
     }
     free(pos);
-    free(rot);
-    free(vel);
     return r;
 }

@@ -45,17 +45,29 @@ typedef struct pile_layout {
 
 /// A footprint about as wide as the pile is tall, walls above the top of the grid.
 pile_layout pile_layout_for(uint32_t n);
-/// Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw].
-tb_result pile_build_container(tb_world* world, const pile_layout* layout);
-/// The same of a given material.
-tb_result pile_build_container_of(tb_world* world, const pile_layout* layout,
-                                  const tb_shape_def* material);
+/// Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw], of
+/// the given material.
+tb_result pile_build_container(tb_world* world, const pile_layout* layout,
+                               const tb_shape_def* material);
 /// Is p outside [lo, hi] by more than the escape tolerance?
 int pile_outside(tb_vec3 p, tb_vec3 lo, tb_vec3 hi);
 /// The end of a pile's build: creates the n bodies of `defs` (then frees it), then the
 /// container, and hands the instance over; on any failure (r included) frees it instead.
 tb_result pile_finish(tb_world* world, const pile_layout* layout, tb_body_def* defs, uint32_t n,
                       tb_result r, scene_instance* inst, scene_instance** out);
+/// The same with a container of the given material.
+tb_result pile_finish_of(tb_world* world, const pile_layout* layout, const tb_shape_def* container,
+                         tb_body_def* defs, uint32_t n, tb_result r, scene_instance* inst,
+                         scene_instance** out);
+/// What a pile's checks count of its bodies.
+typedef struct pile_counts {
+    uint32_t nan, escaped;   ///< not finite; outside the container (others)
+    double resting;          ///< share slower than 0.1 m/s (1 when there are none)
+    double max_penetration;  ///< m, among the last step's contact points
+} pile_counts;
+/// Read the bodies' positions into pos (inst->count of them) and count them.
+tb_result pile_census(tb_world* world, const scene_instance* inst, tb_vec3* pos,
+                      pile_counts* out);
 /// Jittered start of body i: cells of one layer first, layers upwards.
 tb_vec3 pile_grid_slot(const pile_layout* layout, uint32_t i, uint32_t* rng);
 tb_result spheres_build(tb_world* world, const scene_params* params, scene_instance** out);

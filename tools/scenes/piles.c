@@ -44,7 +44,7 @@ static tb_result add_static_box(tb_world* w, const tb_shape_def* sd, tb_vec3 cen
 }
 
 /* Floor (its top at y = 0) and four walls around [-hw, hw] x [0, height] x [-hw, hw]. */
-tb_result pile_build_container_of(tb_world* w, const pile_layout* l, const tb_shape_def* sd)
+tb_result pile_build_container(tb_world* w, const pile_layout* l, const tb_shape_def* sd)
 {
     float hw = l->half_width, hh = 0.5f * l->height, outer = hw + 2.0f * WALL;
     tb_result r = add_static_box(w, sd, (tb_vec3){ 0, -WALL, 0 }, (tb_vec3){ outer, WALL, outer });
@@ -55,11 +55,6 @@ tb_result pile_build_container_of(tb_world* w, const pile_layout* l, const tb_sh
     return r;
 }
 
-tb_result pile_build_container(tb_world* w, const pile_layout* l)
-{
-    tb_shape_def sd = tb_default_shape_def();
-    return pile_build_container_of(w, l, &sd);
-}
 
 tb_vec3 pile_grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
 {
@@ -74,9 +69,17 @@ tb_vec3 pile_grid_slot(const pile_layout* l, uint32_t i, uint32_t* rng)
 tb_result pile_finish(tb_world* w, const pile_layout* l, tb_body_def* defs, uint32_t n,
                       tb_result r, scene_instance* inst, scene_instance** out)
 {
+    tb_shape_def sd = tb_default_shape_def();
+    return pile_finish_of(w, l, &sd, defs, n, r, inst, out);
+}
+
+tb_result pile_finish_of(tb_world* w, const pile_layout* l, const tb_shape_def* container,
+                         tb_body_def* defs, uint32_t n, tb_result r, scene_instance* inst,
+                         scene_instance** out)
+{
     /* Dynamic bodies first, so their ids lead the instance's list. */
     if (r == TB_OK && n) r = tb_body_create_many(w, defs, n, inst->ids);
-    if (r == TB_OK) r = pile_build_container(w, l);
+    if (r == TB_OK) r = pile_build_container(w, l, container);
     free(defs);
     if (r != TB_OK) {
         instance_free(inst);
@@ -159,40 +162,48 @@ void scene_put(scene_checks* out, const char* key, double value)
     }
 }
 
+tb_result pile_census(tb_world* w, const scene_instance* inst, tb_vec3* pos, pile_counts* out)
+{
+    uint32_t n = inst->count;
+    tb_quat* rot = malloc((n ? n : 1) * sizeof *rot);
+    tb_result r = rot ? TB_OK : TB_ERROR_OUT_OF_MEMORY;
+    if (r == TB_OK && n) r = tb_world_read_transforms(w, inst->ids, n, pos, rot);
+    *out = (pile_counts){ 0, 0, 0, 0.0 };
+    uint32_t resting = 0;
+    for (uint32_t i = 0; r == TB_OK && i < n; i++) {
+        tb_vec3 v, w_;
+        if (!scene_vec3_finite(pos[i]) || !scene_quat_finite(rot[i])) out->nan++;
+        else if (pile_outside(pos[i], inst->box_min, inst->box_max)) out->escaped++;
+        r = tb_body_get_velocity(w, inst->ids[i], &v, &w_);
+        if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < REST_SPEED) resting++;
+    }
+    out->resting = n ? (double)resting / n : 1.0;
+    if (r == TB_OK) r = scene_max_penetration(w, &out->max_penetration);
+    free(rot);
+    return r;
+}
+
 tb_result pile_check(tb_world* w, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out)
 {
     (void)steps;
     (void)dt;
-    uint32_t n = inst->count;
-    tb_vec3* pos = malloc((n ? n : 1) * sizeof *pos);
-    tb_quat* rot = malloc((n ? n : 1) * sizeof *rot);
-    tb_result r = pos && rot ? TB_OK : TB_ERROR_OUT_OF_MEMORY;
-    if (r == TB_OK && n) r = tb_world_read_transforms(w, inst->ids, n, pos, rot);
-    uint32_t nan = 0, escaped = 0, resting = 0;
-    for (uint32_t i = 0; r == TB_OK && i < n; i++) {
-        tb_vec3 v, w_;
-        if (!scene_vec3_finite(pos[i]) || !scene_quat_finite(rot[i])) nan++;
-        else if (pile_outside(pos[i], inst->box_min, inst->box_max)) escaped++;
-        r = tb_body_get_velocity(w, inst->ids[i], &v, &w_);
-        if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < REST_SPEED) resting++;
-    }
-    double depth = 0.0;
-    if (r == TB_OK) r = scene_max_penetration(w, &depth);
+    tb_vec3* pos = malloc((inst->count ? inst->count : 1) * sizeof *pos);
+    pile_counts counts;
+    tb_result r = pos ? pile_census(w, inst, pos, &counts) : TB_ERROR_OUT_OF_MEMORY;
     tb_world_stats st;
     if (r == TB_OK) r = tb_world_get_stats(w, &st);
     if (r == TB_OK) {
         out->count = 0;
-        scene_put(out, "nan", nan);
-        scene_put(out, "escaped", escaped);
-        scene_put(out, "max_penetration", depth);
+        scene_put(out, "nan", counts.nan);
+        scene_put(out, "escaped", counts.escaped);
+        scene_put(out, "max_penetration", counts.max_penetration);
         scene_put(out, "pairs", st.pair_count);
         scene_put(out, "contacts", st.contact_count);
         scene_put(out, "batches", st.batch_count);
         scene_put(out, "colours", st.colour_count);
-        scene_put(out, "resting", n ? (double)resting / n : 1.0);
+        scene_put(out, "resting", counts.resting);
     }
     free(pos);
-    free(rot);
     return r;
 }
