@@ -64,7 +64,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python check-layers print-libs examples check-examples FORCE
+.PHONY: all deps test run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python wheel check-layers print-libs examples check-examples FORCE
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -322,12 +322,35 @@ check-abi-break: $(BUILD)/libtumble.so
 	$(call say,CHECK,abi-break)
 	$(Q)sh tools/abi-break-check $(BUILD)
 
-# The Python binding (tools/python) under pytest, on Debian's python3 (numpy, cffi, pytest
-# come from its packages: make deps).
-PYTHON ?= /usr/bin/python3
-check-python: $(BUILD)/libtumble.so
+# The Python package (tools/python) as a user installs it: `pip install tools/python` into a
+# fresh virtual environment under build/, offline (numpy, cffi and pytest are Debian's,
+# through --system-site-packages: make deps), finding the library of a temporary install
+# through pkg-config; its pytest suite runs there. Then the wheel (make wheel) goes into
+# the same environment and must open the library it bundles.
+PYTHON      ?= /usr/bin/python3
+PY_TEST     := $(abspath $(BUILD))/python-test
+PIP_OFFLINE := --no-build-isolation --no-deps --no-index --disable-pip-version-check -q
+PY_ENV      := env -u TUMBLE_LIBRARY -u TUMBLE_HEADER $(TEST_ENV) TUMBLE_BUILD_DIR=$(abspath $(BUILD))
+check-python: $(BUILD)/libtumble.so $(PLUGINS) wheel
 	$(call say,PYTEST,tools/python)
-	$(Q)env $(TEST_ENV) TUMBLE_LIBRARY=$(abspath $(BUILD))/libtumble.so $(PYTHON) -m pytest -q -p no:cacheprovider tools/python
+	$(Q)rm -rf $(PY_TEST) && mkdir -p $(PY_TEST)/empty
+	$(Q)$(MAKE) --no-print-directory -s install PREFIX=$(PY_TEST)/prefix >/dev/null
+	$(Q)$(PYTHON) -m venv --system-site-packages $(PY_TEST)/venv
+	$(Q)$(PY_TEST)/venv/bin/pip install $(PIP_OFFLINE) ./tools/python
+	$(Q)cd $(PY_TEST) && $(PY_ENV) PKG_CONFIG_PATH=$(PY_TEST)/prefix/lib/pkgconfig venv/bin/python -c \
+	  'import sys, tumble; assert tumble.__file__.startswith(sys.prefix) and tumble.library_source == "pkg-config", tumble.library_path'
+	$(Q)$(PY_ENV) PKG_CONFIG_PATH=$(PY_TEST)/prefix/lib/pkgconfig $(PY_TEST)/venv/bin/python -m pytest -q -p no:cacheprovider tools/python
+	$(Q)$(PY_TEST)/venv/bin/pip install $(PIP_OFFLINE) --force-reinstall $(BUILD)/wheel/tumble-*.whl
+	$(Q)cd $(PY_TEST) && $(PY_ENV) PKG_CONFIG_PATH= PKG_CONFIG_LIBDIR=$(PY_TEST)/empty venv/bin/python -c \
+	  'import tumble; assert tumble.library_source == "bundled", tumble.library_path; tumble.World().step()'
+
+# A wheel of the Python package with build/libtumble.so (less its debug info) bundled in
+# it: build/wheel/.
+wheel: $(BUILD)/libtumble.so
+	$(call say,WHEEL,$(BUILD)/wheel)
+	$(Q)rm -rf $(BUILD)/wheel && mkdir -p $(BUILD)/wheel-lib
+	$(Q)strip --strip-debug -o $(BUILD)/wheel-lib/libtumble.so.$(VERSION) $(BUILD)/libtumble.so.$(VERSION)
+	$(Q)TUMBLE_BUNDLE_LIBRARY=$(abspath $(BUILD))/wheel-lib/libtumble.so.$(VERSION) $(PYTHON) -m pip wheel $(PIP_OFFLINE) -w $(BUILD)/wheel ./tools/python
 
 # The include arrows of the C core (api -> world -> stages -> gpu -> base, geom -> base),
 # each folder's main header, and tools kept to the public headers: tools/check-layers.

@@ -1,136 +1,425 @@
-"""Tumble from Python: the C API of libtumble.so through cffi, with numpy arrays for bulk data.
+"""Tumble from Python: the C API of libtumble through cffi, with numpy arrays for bulk data.
 
-The declarations are read from include/tumble.h itself (no struct is written twice): the
-header's preprocessor lines are dropped, its integer #defines kept, and the rest handed to
-cffi. The library is TUMBLE_LIBRARY, else build/libtumble.so of this checkout, else
-libtumble.so on the loader's path; the header is TUMBLE_HEADER, else include/tumble.h.
+The declarations are read from tumble.h itself (no struct is written twice); how the
+library and the header are found is in tumble/_library.py and the package's README.
 
-    import tumble
-    with tumble.World(broadphase="lbvh") as world:
-        ball = world.sphere(0.5)
-        bodies = world.add_bodies(ball, positions)          # one call for any number
+    import numpy as np, tumble
+    with tumble.World() as world:
+        world.add_body(world.plane((0, 1, 0)), static=True)
+        balls = world.add_bodies(world.sphere(0.5), np.array([[0, 2, 0], [0, 3.5, 0]]))
         world.step(1 / 60, n=60)
-        positions, rotations = world.transforms(bodies)     # (n, 3) and (n, 4) float32
-"""
-import os
-import re
+        positions, rotations = world.transforms(balls)     # (n, 3) and (n, 4) float32
+        contacts = world.contacts()                        # numpy structured array
 
-import cffi
+Arguments are checked before any call: a wrong type raises TypeError and a wrong shape or
+value ValueError, each naming the argument. What the library refuses raises TumbleError
+with the library's sentence and its tb_result code.
+"""
+import numbers
+import os
+
 import numpy as np
 
-_HERE = os.path.dirname(os.path.abspath(__file__))
-_ROOT = os.path.normpath(os.path.join(_HERE, "..", "..", ".."))
+from . import _library
+from ._library import LibraryNotFound
+
+ffi, lib, library_path, header_path, library_source = _library.load()
+
+with open(header_path) as _f:
+    HEADER_VERSION = _library.header_version(_f.read())
+__version__ = "%d.%d.%d" % HEADER_VERSION
+
+__all__ = ["World", "Shape", "Body", "Bodies", "Plugin", "TumbleError", "ClosedError",
+           "LibraryNotFound", "BODY_ID", "CONTACT", "BROADPHASES", "version",
+           "library_path", "header_path", "library_source", "ffi", "lib"]
 
 
-def _declarations(header_text):
-    """The header as cffi takes it: no preprocessor lines (continued ones included) but
-    integer #defines, no blocks for C++ or for building the library, no static constants,
-    TB_API gone."""
-    out, skipping, continued = [], 0, False
-    for line in header_text.splitlines():
-        s = line.strip()
-        if continued:  # the rest of a preprocessor line that ended with a backslash
-            continued = s.endswith("\\")
-            continue
-        if s.startswith("#"):
-            continued = s.endswith("\\")
-        if s.startswith("#if") and ("__cplusplus" in s or "TB_BUILDING_LIBRARY" in s):
-            skipping += 1
-        elif skipping and s.startswith("#endif"):
-            skipping -= 1
-        elif not skipping:
-            define = re.match(r"#define\s+(\w+)\s+(\d+)\s*$", s)
-            if define:
-                out.append("#define %s %s" % define.groups())
-            elif not s.startswith("#") and not s.startswith("static const"):
-                out.append(line.replace("TB_API ", ""))
-    return "\n".join(out)
+def version():
+    """(major, minor, patch) of the library running (tb_version)."""
+    v = lib.tb_version()
+    return (v >> 22, (v >> 12) & 0x3ff, v & 0xfff)
 
 
-def _open():
-    header = os.environ.get("TUMBLE_HEADER") or os.path.join(_ROOT, "include", "tumble.h")
-    with open(header) as f:
-        text = f.read()
-    ffi = cffi.FFI()
-    ffi.cdef(_declarations(text))
-    library = os.environ.get("TUMBLE_LIBRARY") or os.path.join(_ROOT, "build", "libtumble.so")
-    if not os.path.exists(library):
-        library = "libtumble.so"
-    return ffi, ffi.dlopen(library)
+def _broadphases():
+    names = {}
+    for value in range(64):
+        name = lib.tb_broadphase_name(value)
+        if name != ffi.NULL:
+            names[ffi.string(name).decode()] = value
+    return names
 
 
-ffi, lib = _open()
+BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
+_SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
+                lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull"}
+_LOG_LEVELS = {lib.TB_LOG_DEBUG: "debug", lib.TB_LOG_INFO: "info",
+               lib.TB_LOG_WARNING: "warning", lib.TB_LOG_ERROR: "error"}
 
-BROADPHASES = {"default": lib.TB_BROADPHASE_DEFAULT, "grid": lib.TB_BROADPHASE_GRID,
-               "sap": lib.TB_BROADPHASE_SAP, "lbvh": lib.TB_BROADPHASE_LBVH,
-               "isap": lib.TB_BROADPHASE_ISAP}
 
+# ---- numpy views of C structs: dtypes built from cffi's layout, never written by hand ----
+
+_SCALARS = {"float": "<f4", "double": "<f8", "uint32_t": "<u4", "int32_t": "<i4",
+            "uint16_t": "<u2", "uint64_t": "<u8", "int": "<i4"}
+
+
+def _dtype(ctype):
+    """The numpy dtype of a C struct: its fields at cffi's offsets, tb_vec3 and tb_quat as
+    3 and 4 float32s, nested id structs as structured fields."""
+    t = ffi.typeof(ctype)
+    names, formats, offsets = [], [], []
+    for name, field in t.fields:
+        ft = field.type
+        if ft.kind == "struct" and ft.cname in ("tb_vec3", "tb_quat"):
+            fmt = ("<f4", (len(ft.fields),))
+        elif ft.kind == "struct":
+            fmt = _dtype(ft.cname)
+        elif ft.kind == "enum":
+            fmt = "<i4"
+        else:
+            fmt = _SCALARS[ft.cname]
+        names.append(name)
+        formats.append(fmt)
+        offsets.append(field.offset)
+    dtype = np.dtype({"names": names, "formats": formats, "offsets": offsets,
+                      "itemsize": ffi.sizeof(t)})
+    assert dtype.itemsize == ffi.sizeof(t)
+    return dtype
+
+
+BODY_ID = _dtype("tb_body_id")    # index1, world, generation
+CONTACT = _dtype("tb_contact")    # a, b, point, normal, separation, normal_impulse, ...
+
+
+# ---- errors ------------------------------------------------------------------------------
 
 class TumbleError(RuntimeError):
-    """A call failed; `code` is the tb_result, the message the library's sentence."""
+    """The library refused a call: `code` is the tb_result, `result` its name ("invalid
+    argument", ...), the message the library's sentence."""
 
     def __init__(self, code, message):
         super().__init__(message)
         self.code = code
+        self.result = ffi.string(lib.tb_result_string(code)).decode()
 
 
-def _vec3(v):
-    x, y, z = (float(c) for c in v)
+class ClosedError(RuntimeError):
+    """A World (or what belongs to it) was used after close()."""
+
+
+# ---- argument checks: each names the argument it refuses -----------------------------------
+
+def _real(name, value):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError("%s must be a real number, got %r" % (name, value))
+    return float(value)
+
+
+def _count(name, value, what="a non-negative integer"):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError("%s must be %s, got %r" % (name, what, value))
+    if not 0 <= value <= 0xffffffff:
+        raise ValueError("%s must be %s below 2^32, got %d" % (name, what, value))
+    return int(value)
+
+
+def _reals(name, value):
+    """`value` as a float32 array, refusing what is not real numbers (strings, complex,
+    booleans, objects, ragged lists)."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError("%s must be real numbers, got %r" % (name, value))
+    try:
+        a = np.asarray(value)
+    except (ValueError, TypeError) as e:
+        raise ValueError("%s must be a rectangular array of real numbers (%s)" % (name, e)) \
+            from None
+    if a.dtype.kind not in "iuf":
+        raise TypeError("%s must hold real numbers, got an array of %s" % (name, a.dtype))
+    return np.ascontiguousarray(a, dtype=np.float32)
+
+
+def _vector(name, value, size):
+    a = _reals(name, value)
+    if a.shape != (size,):
+        raise ValueError("%s must be %d numbers, got an array of shape %s"
+                         % (name, size, a.shape))
+    return a
+
+
+def _vec3(name, value):
+    x, y, z = (float(c) for c in _vector(name, value, 3))
     return ffi.new("tb_vec3*", (x, y, z))[0]
 
 
-class Bodies:
-    """Ids of bodies made by one add_bodies call, in order (a C array the bulk calls take)."""
+def _quat(name, value):
+    x, y, z, w = (float(c) for c in _vector(name, value, 4))
+    return ffi.new("tb_quat*", (x, y, z, w))[0]
 
-    def __init__(self, ids, count):
-        self.ids, self.count = ids, count
+
+def _rows(name, value, columns, n=None):
+    """An (n, columns) float32 array. One row of `columns` numbers is taken as one row, or,
+    when `n` is given, as the row of all n."""
+    a = _reals(name, value)
+    if a.ndim == 1 and a.shape[0] == columns:
+        a = a.reshape(1, columns) if n is None else np.tile(a, (n, 1))
+    if a.ndim != 2 or a.shape[1] != columns:
+        raise ValueError("%s must be an (n, %d) array (or %d numbers), got an array of "
+                         "shape %s" % (name, columns, columns, a.shape))
+    if n is not None and a.shape[0] != n:
+        raise ValueError("%s has %d rows but there are %d bodies" % (name, a.shape[0], n))
+    return np.ascontiguousarray(a)
+
+
+def _path(name, value):
+    if not isinstance(value, (str, bytes, os.PathLike)):
+        raise TypeError("%s must be a path (str, bytes or os.PathLike), got %r"
+                        % (name, value))
+    return os.fsencode(value)
+
+
+# ---- ids -----------------------------------------------------------------------------------
+
+class _Id:
+    """An id of the C API: index1, world serial, generation (equal ids compare equal)."""
+    __slots__ = ("index1", "world", "generation")
+    _ctype = None
+
+    def __init__(self, index1, world, generation):
+        self.index1, self.world, self.generation = int(index1), int(world), int(generation)
+
+    def _c(self):
+        return ffi.new(self._ctype + "*", (self.index1, self.world, self.generation))[0]
+
+    @classmethod
+    def _from_c(cls, c):
+        return cls(c.index1, c.world, c.generation)
+
+    def _key(self):
+        return (type(self), self.index1, self.world, self.generation)
+
+    def __eq__(self, other):
+        return isinstance(other, _Id) and self._key() == other._key()
+
+    def __hash__(self):
+        return hash(self._key())
+
+    def __repr__(self):
+        return "%s(%d, %d, %d)" % (type(self).__name__, self.index1, self.world,
+                                   self.generation)
+
+
+class Shape(_Id):
+    """A shape's id (World.sphere, box, plane, hull). Any number of bodies may use it."""
+    __slots__ = ()
+    _ctype = "tb_shape_id"
+
+
+class Body(_Id):
+    """One body's id: an element of Bodies, or Body(*contact["a"]) for a contact's body."""
+    __slots__ = ()
+    _ctype = "tb_body_id"
+
+
+class Bodies:
+    """Ids of bodies in order, as a numpy array of BODY_ID (the C array the bulk calls
+    take). Indexing with an int gives a Body; with a slice, mask or index array, Bodies."""
+
+    def __init__(self, ids):
+        ids = np.asarray(ids)
+        if ids.dtype != BODY_ID or ids.ndim != 1:
+            raise TypeError("ids must be a 1-D array of tumble.BODY_ID, got %s of %s"
+                            % (ids.shape, ids.dtype))
+        self.ids = np.ascontiguousarray(ids)
 
     def __len__(self):
-        return self.count
+        return len(self.ids)
 
+    def __iter__(self):
+        return (Body(*i) for i in self.ids.tolist())
+
+    def __getitem__(self, k):
+        if isinstance(k, numbers.Integral) and not isinstance(k, (bool, np.bool_)):
+            return Body(*self.ids[k].tolist())
+        return Bodies(self.ids[k])
+
+    def __repr__(self):
+        return "Bodies(%d)" % len(self)
+
+    def __add__(self, other):
+        if not isinstance(other, Bodies):
+            return NotImplemented
+        return Bodies(np.concatenate([self.ids, other.ids]))
+
+    def index(self, ids):
+        """Where each of `ids` (Bodies, a BODY_ID array such as contacts()["a"], or a Body)
+        is in this collection, -1 where it is not: an int array, or an int for a Body."""
+        if isinstance(ids, Body):
+            return int(self.index(np.array([(ids.index1, ids.world, ids.generation)],
+                                            dtype=BODY_ID))[0])
+        if isinstance(ids, Bodies):
+            ids = ids.ids
+        ids = np.asarray(ids)
+        if ids.dtype != BODY_ID:
+            raise TypeError("ids must be a Body, Bodies or an array of tumble.BODY_ID, "
+                            "got an array of %s" % ids.dtype)
+        mine = self.ids.view(np.uint64)
+        order = np.argsort(mine, kind="stable")
+        wanted = np.ascontiguousarray(ids).view(np.uint64).reshape(ids.shape)
+        at = np.searchsorted(mine, wanted, sorter=order) if len(mine) else \
+            np.zeros(wanted.shape, dtype=np.intp)
+        at = np.minimum(at, max(len(mine) - 1, 0))
+        found = order[at] if len(mine) else at
+        hit = mine[found] == wanted if len(mine) else np.zeros(wanted.shape, dtype=bool)
+        return np.where(hit, found, -1)
+
+
+def _as_body(name, value):
+    if isinstance(value, Body):
+        return value
+    if isinstance(value, Bodies) and len(value) == 1:
+        return value[0]
+    raise TypeError("%s must be a tumble.Body (an element of the Bodies add_bodies "
+                    "returned), got %r" % (name, value))
+
+
+def _as_shape(name, value):
+    if not isinstance(value, Shape):
+        raise TypeError("%s must be a tumble.Shape (from World.sphere, box, plane or hull), "
+                        "got %r" % (name, value))
+    return value
+
+
+def _as_bodies(name, value):
+    """(C array of ids, count, what keeps the C array alive) for a Body or Bodies."""
+    if isinstance(value, Body):
+        ids = np.array([(value.index1, value.world, value.generation)], dtype=BODY_ID)
+    elif isinstance(value, Bodies):
+        ids = value.ids
+    else:
+        raise TypeError("%s must be tumble.Bodies or a tumble.Body, got %r" % (name, value))
+    return (ffi.from_buffer("tb_body_id[]", ids) if len(ids) else ffi.NULL), len(ids), ids
+
+
+# ---- plugins ---------------------------------------------------------------------------------
 
 class Plugin:
-    """A plugin loaded into a world: its parameter block and unloading."""
+    """A plugin loaded into a world (World.load_plugin): its parameter block and unloading."""
 
     def __init__(self, world, plugin_id):
         self._world, self.id = world, plugin_id
 
     def set_params(self, data, offset=0):
-        """Write `data` (bytes, or a numpy array such as float32 vectors) at `offset` of the
-        plugin's parameter block; the GPU sees it from the next step on."""
-        raw = np.ascontiguousarray(data).tobytes() if not isinstance(data, bytes) else data
-        self._world._check(lib.tb_world_set_plugin_param(self._world._w, self.id, offset,
-                                                        raw, len(raw)))
+        """Write `data` (bytes, or a numpy array such as float32 vectors) at byte `offset`
+        of the plugin's parameter block; the GPU sees it from the next step on."""
+        offset = _count("offset", offset)
+        if isinstance(data, (bytes, bytearray, memoryview)):
+            raw = bytes(data)
+        elif isinstance(data, np.ndarray) and data.dtype.kind in "biuf":
+            raw = np.ascontiguousarray(data).tobytes()
+        else:
+            raise TypeError("data must be bytes or a numpy array of numbers, got %r"
+                            % (data,))
+        w = self._world._handle()
+        self._world._check(lib.tb_world_set_plugin_param(w, self.id, offset, raw, len(raw)))
 
     def unload(self):
-        self._world._check(lib.tb_world_unload_plugin(self._world._w, self.id))
+        """Remove the plugin's stages and callbacks and unload it."""
+        self._world._check(lib.tb_world_unload_plugin(self._world._handle(), self.id))
+
+
+# ---- the world -------------------------------------------------------------------------------
+
+_WORLD_FIELDS_SET_ELSEWHERE = ("device", "log", "log_user", "broadphase", "internal_cookie")
 
 
 class World:
-    """A world on a Vulkan device. Keyword arguments set tb_world_def fields
-    (gravity=(0, -9.81, 0), substeps=6, initial_body_capacity=..., ...); broadphase
-    takes a name ("grid", "sap", "lbvh", "isap") and device a name substring or index."""
+    """A world on a Vulkan device, destroyed by close() (or leaving a with block).
 
-    def __init__(self, broadphase="default", device=None, **fields):
+    broadphase: "default", "grid", "sap", "lbvh" or "isap". device: an index into the
+    Vulkan device list or a substring of the device's name (None: TUMBLE_DEVICE, else the
+    library's choice). log: a callable log(level, message), level one of "debug", "info",
+    "warning", "error", that receives the library's messages (validation ones included).
+    Other keyword arguments set tb_world_def fields: gravity=(0, -9.81, 0), substeps=6,
+    solver_iterations, initial_body_capacity, contact_hertz, validation=True, ...
+    """
+
+    def __init__(self, broadphase="default", device=None, log=None, **fields):
+        self._w = None
+        if not isinstance(broadphase, str) or broadphase not in BROADPHASES:
+            raise ValueError("broadphase must be one of %s, got %r"
+                             % (", ".join(repr(b) for b in BROADPHASES), broadphase))
         d = ffi.new("tb_world_def*", lib.tb_default_world_def())
         d.broadphase = BROADPHASES[broadphase]
-        self._device = ffi.new("char[]", device.encode()) if device is not None else None
-        if self._device is not None:
-            d.device = self._device
-        for name, value in fields.items():
-            setattr(d, name, _vec3(value) if name == "gravity" else value)
+        self._keep = []
+        if device is not None:
+            if isinstance(device, numbers.Integral) and not isinstance(device, bool):
+                device = str(_count("device", device))
+            if not isinstance(device, str):
+                raise TypeError("device must be a device index or a substring of a device "
+                                "name, got %r" % (device,))
+            self._keep.append(ffi.new("char[]", device.encode()))
+            d.device = self._keep[-1]
+        if log is not None:
+            if not callable(log):
+                raise TypeError("log must be a callable log(level, message), got %r" % (log,))
+
+            def sink(user, level, message):
+                try:
+                    log(_LOG_LEVELS.get(level, str(level)), ffi.string(message).decode())
+                except Exception:     # an exception cannot cross the C call; show it
+                    import traceback
+                    traceback.print_exc()
+
+            self._keep.append(ffi.callback("tb_log_fn*", sink))
+            d.log = self._keep[-1]
+        self._set_fields(d, fields)
         out = ffi.new("tb_world**")
         code = lib.tb_world_create(d, out)
         if code != lib.TB_OK:
             raise TumbleError(code, ffi.string(lib.tb_world_last_error(ffi.NULL)).decode())
         self._w = out[0]
 
-    def close(self):
-        if getattr(self, "_w", None):
-            lib.tb_world_destroy(self._w)
-            self._w = None
+    def _set_fields(self, d, fields):
+        known = {name: f.type for name, f in ffi.typeof("tb_world_def").fields
+                 if name not in _WORLD_FIELDS_SET_ELSEWHERE}
+        for name, value in fields.items():
+            if name not in known:
+                raise TypeError("World() got an unexpected keyword argument %r; tb_world_def "
+                                "fields are %s" % (name, ", ".join(sorted(known))))
+            ctype = known[name].cname
+            if ctype == "tb_vec3":
+                setattr(d, name, _vec3(name, value))
+            elif ctype == "float":
+                setattr(d, name, _real(name, value))
+            elif ctype == "uint32_t":
+                setattr(d, name, _count(name, value))
+            elif ctype == "int":
+                if not isinstance(value, (bool, numbers.Integral)):
+                    raise TypeError("%s must be True or False, got %r" % (name, value))
+                setattr(d, name, int(bool(value)))
+            elif ctype == "char *":
+                if value is not None:
+                    self._keep.append(ffi.new("char[]", _path(name, value)))
+                    setattr(d, name, self._keep[-1])
+            else:
+                raise TypeError("World() cannot set %s (%s)" % (name, ctype))
 
-    __del__ = close
+    # ---- lifetime --------------------------------------------------------------------------
+
+    def close(self):
+        """Destroy the world and everything in it; using it afterwards raises ClosedError."""
+        w, self._w = getattr(self, "_w", None), None
+        if w is not None and lib is not None:
+            lib.tb_world_destroy(w)
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    @property
+    def closed(self):
+        return self._w is None
 
     def __enter__(self):
         return self
@@ -138,107 +427,333 @@ class World:
     def __exit__(self, *exc):
         self.close()
 
+    def _handle(self):
+        if self._w is None:
+            raise ClosedError("this tumble.World was closed; make a new World")
+        return self._w
+
     def _check(self, code):
         if code != lib.TB_OK:
             raise TumbleError(code, ffi.string(lib.tb_world_last_error(self._w)).decode())
 
-    # ---- shapes -------------------------------------------------------------------------
+    # ---- world settings --------------------------------------------------------------------
+
+    @property
+    def gravity(self):
+        """Gravity, m/s^2, as a (3,) float32 array; assign 3 numbers to change it (from the
+        next step on)."""
+        g = lib.tb_world_get_gravity(self._handle())
+        return np.array([g.x, g.y, g.z], dtype=np.float32)
+
+    @gravity.setter
+    def gravity(self, value):
+        g = _vec3("gravity", value)
+        self._check(lib.tb_world_set_gravity(self._handle(), g))
+
+    def device_info(self):
+        """The Vulkan device: name, driver, vendor_id, device_id, api_version,
+        subgroup_size, is_cpu."""
+        info = ffi.new("tb_device_info*")
+        self._check(lib.tb_world_device_info(self._handle(), info))
+        return {"name": ffi.string(info.name).decode(), "driver": ffi.string(info.driver).decode(),
+                "vendor_id": info.vendor_id, "device_id": info.device_id,
+                "api_version": info.api_version, "subgroup_size": info.subgroup_size,
+                "is_cpu": bool(info.is_cpu)}
+
+    # ---- shapes ----------------------------------------------------------------------------
 
     def _shape(self, make, density, friction, restitution):
+        w = self._handle()
         d = ffi.new("tb_shape_def*", lib.tb_default_shape_def())
-        if density is not None:
-            d.density = density
-        if friction is not None:
-            d.friction = friction
-        if restitution is not None:
-            d.restitution = restitution
+        for name, value in (("density", density), ("friction", friction),
+                            ("restitution", restitution)):
+            if value is not None:
+                setattr(d, name, _real(name, value))
         out = ffi.new("tb_shape_id*")
-        self._check(make(d, out))
-        return out[0]
+        self._check(make(w, d, out))
+        return Shape._from_c(out[0])
 
     def sphere(self, radius, density=None, friction=None, restitution=None):
-        return self._shape(lambda d, o: lib.tb_shape_create_sphere(self._w, d, radius, o),
+        """A sphere of `radius` m about the body's origin."""
+        r = _real("radius", radius)
+        return self._shape(lambda w, d, o: lib.tb_shape_create_sphere(w, d, r, o),
                            density, friction, restitution)
 
     def box(self, half_extents, density=None, friction=None, restitution=None):
-        h = _vec3(half_extents)
-        return self._shape(lambda d, o: lib.tb_shape_create_box(self._w, d, h, o),
+        """A box of `half_extents` (3 numbers, m) about the body's origin."""
+        h = _vec3("half_extents", half_extents)
+        return self._shape(lambda w, d, o: lib.tb_shape_create_box(w, d, h, o),
                            density, friction, restitution)
 
-    def plane(self, normal, offset, friction=None, restitution=None):
-        n = _vec3(normal)
-        return self._shape(lambda d, o: lib.tb_shape_create_plane(self._w, d, n, offset, o),
+    def plane(self, normal, offset=0.0, friction=None, restitution=None):
+        """The half-space dot(normal, p) <= offset, for static bodies (the ground)."""
+        n, off = _vec3("normal", normal), _real("offset", offset)
+        return self._shape(lambda w, d, o: lib.tb_shape_create_plane(w, d, n, off, o),
                            None, friction, restitution)
 
-    # ---- bodies -------------------------------------------------------------------------
+    def hull(self, points, density=None, friction=None, restitution=None):
+        """The convex hull of `points` ((n, 3) m). Its body frame is its principal frame
+        (origin at the centre of mass): hull_info says where that lies among the points."""
+        p = _rows("points", points, 3)
+        return self._shape(lambda w, d, o: lib.tb_shape_create_hull(
+            w, d, ffi.from_buffer("tb_vec3[]", p), len(p), o), density, friction, restitution)
 
-    def add_bodies(self, shape, positions, static=False, velocities=None):
-        """One body of `shape` per row of `positions` (n x 3), in one tb_body_create_many
-        call (all or none). Returns their Bodies."""
-        positions = np.ascontiguousarray(positions, dtype=np.float32).reshape(-1, 3)
+    def hull_info(self, shape):
+        """What a hull became: vertex_count, face_count, edge_count, volume (m^3),
+        center_of_mass and principal_axes (in the input points' frame), unit_inertia."""
+        s = _as_shape("shape", shape)
+        info = ffi.new("tb_hull_info*")
+        self._check(lib.tb_shape_get_hull_info(self._handle(), s._c(), info))
+        v3 = lambda v: np.array([v.x, v.y, v.z], dtype=np.float32)  # noqa: E731
+        q = info.principal_axes
+        return {"vertex_count": info.vertex_count, "face_count": info.face_count,
+                "edge_count": info.edge_count, "volume": info.volume,
+                "center_of_mass": v3(info.center_of_mass),
+                "principal_axes": np.array([q.x, q.y, q.z, q.w], dtype=np.float32),
+                "unit_inertia": v3(info.unit_inertia)}
+
+    def hull_vertices(self, shape):
+        """A hull's vertices in its body frame, (n, 3) float32."""
+        s = _as_shape("shape", shape)._c()
+        w = self._handle()
+        count = ffi.new("uint32_t*")
+        self._check(lib.tb_shape_get_hull_vertices(w, s, ffi.NULL, 0, count))
+        out = np.empty((count[0], 3), dtype=np.float32)
+        if count[0]:
+            self._check(lib.tb_shape_get_hull_vertices(
+                w, s, ffi.from_buffer("tb_vec3[]", out), count[0], count))
+        return out
+
+    def shape_type(self, shape):
+        """"sphere", "box", "plane" or "hull"."""
+        out = ffi.new("tb_shape_type*")
+        self._check(lib.tb_shape_get_type(self._handle(), _as_shape("shape", shape)._c(), out))
+        return _SHAPE_TYPES[out[0]]
+
+    # ---- bodies ----------------------------------------------------------------------------
+
+    def add_bodies(self, shape, positions, static=False, rotations=None, velocities=None,
+                   angular_velocities=None, mass=None, inertia=None, linear_damping=None,
+                   angular_damping=None, gravity_scale=None):
+        """Bodies of `shape`, one per row of `positions` ((n, 3) m; 3 numbers for one), in
+        one tb_body_create_many call: all are made or none. rotations ((n, 4) x y z w),
+        velocities and angular_velocities ((n, 3), m/s and rad/s) take a row per body or
+        one row for all; mass (kg), inertia (3 numbers), linear_damping, angular_damping
+        and gravity_scale apply to all. Returns their Bodies."""
+        s = _as_shape("shape", shape)
+        positions = _rows("positions", positions, 3)
         n = len(positions)
+        per_body = {"position": positions}
+        for name, field, columns, value in (
+                ("rotations", "rotation", 4, rotations),
+                ("velocities", "linear_velocity", 3, velocities),
+                ("angular_velocities", "angular_velocity", 3, angular_velocities)):
+            if value is not None:
+                per_body[field] = _rows(name, value, columns, n)
+        if not isinstance(static, (bool, np.bool_)):
+            raise TypeError("static must be True or False, got %r" % (static,))
+        w = self._handle()
         template = ffi.new("tb_body_def*", lib.tb_default_body_def())
-        template.shape = shape
+        template.shape = s._c()
         template.type = lib.TB_BODY_STATIC if static else lib.TB_BODY_DYNAMIC
+        for name, value in (("mass", mass), ("linear_damping", linear_damping),
+                            ("angular_damping", angular_damping),
+                            ("gravity_scale", gravity_scale)):
+            if value is not None:
+                setattr(template, name, _real(name, value))
+        if inertia is not None:
+            template.inertia = _vec3("inertia", inertia)
         defs = ffi.new("tb_body_def[]", max(n, 1))
         size = ffi.sizeof("tb_body_def")
         raw = np.frombuffer(ffi.buffer(defs), dtype=np.uint8).reshape(-1, size)
         raw[:] = np.frombuffer(ffi.buffer(template), dtype=np.uint8)
-        self._fill(defs, n, "position", positions)
-        if velocities is not None:
-            self._fill(defs, n, "linear_velocity",
-                       np.asarray(velocities, dtype=np.float32).reshape(-1, 3))
-        ids = ffi.new("tb_body_id[]", max(n, 1))
-        self._check(lib.tb_body_create_many(self._w, defs, n, ids))
-        return Bodies(ids, n)
+        for field, values in per_body.items():
+            view = np.ndarray((n, values.shape[1]), dtype=np.float32, buffer=ffi.buffer(defs),
+                              offset=ffi.offsetof("tb_body_def", field), strides=(size, 4))
+            view[:] = values
+        ids = np.zeros(n, dtype=BODY_ID)
+        out = ffi.from_buffer("tb_body_id[]", ids) if n else ffi.NULL
+        self._check(lib.tb_body_create_many(w, defs, n, out))
+        return Bodies(ids)
 
-    @staticmethod
-    def _fill(defs, n, field, values):
-        size = ffi.sizeof("tb_body_def")
-        view = np.ndarray((n, 3), dtype=np.float32, buffer=ffi.buffer(defs),
-                          offset=ffi.offsetof("tb_body_def", field), strides=(size, 4))
-        view[:] = values
+    def add_body(self, shape, position=(0.0, 0.0, 0.0), static=False, rotation=None,
+                 velocity=None, angular_velocity=None, **others):
+        """One body (see add_bodies for the other keywords); returns its Body."""
+        return self.add_bodies(
+            shape, _vector("position", position, 3), static=static,
+            rotations=None if rotation is None else _vector("rotation", rotation, 4),
+            velocities=None if velocity is None else _vector("velocity", velocity, 3),
+            angular_velocities=None if angular_velocity is None else
+            _vector("angular_velocity", angular_velocity, 3), **others)[0]
+
+    def destroy(self, what):
+        """Destroy a Body, all of Bodies (all or none: each must be live, and none twice), or
+        a Shape (refused while bodies use it)."""
+        w = self._handle()
+        if isinstance(what, Shape):
+            self._check(lib.tb_shape_destroy(w, what._c()))
+            return
+        if isinstance(what, Body):
+            self._check(lib.tb_body_destroy(w, what._c()))
+            return
+        if not isinstance(what, Bodies):
+            raise TypeError("what must be a tumble.Body, Bodies or Shape, got %r" % (what,))
+        live = self.is_valid(what)
+        if not live.all():
+            k = int(np.argmin(live))
+            try:    # the library's sentence for why this one is not live
+                self._check(lib.tb_body_destroy(w, what[k]._c()))
+            except TumbleError as e:
+                raise TumbleError(e.code, "what[%d]: %s; nothing was destroyed" % (k, e)) \
+                    from None
+        if len(np.unique(what.ids.view(np.uint64))) != len(what):
+            raise ValueError("what names a body twice; nothing was destroyed")
+        for body in what:
+            self._check(lib.tb_body_destroy(w, body._c()))
+
+    def is_valid(self, what):
+        """Whether a Body or Shape is live in this world; for Bodies a bool array."""
+        w = self._handle()
+        if isinstance(what, Shape):
+            return bool(lib.tb_shape_is_valid(w, what._c()))
+        if isinstance(what, Body):
+            return bool(lib.tb_body_is_valid(w, what._c()))
+        if isinstance(what, Bodies):
+            return np.array([bool(lib.tb_body_is_valid(w, b._c())) for b in what], dtype=bool)
+        raise TypeError("what must be a tumble.Body, Bodies or Shape, got %r" % (what,))
+
+    def body_ids(self):
+        """Every live body of the world, in slot order, as Bodies."""
+        w = self._handle()
+        n = 0
+        stats = ffi.new("tb_world_stats*")
+        self._check(lib.tb_world_get_stats(w, stats))
+        ids = np.zeros(stats.body_count, dtype=BODY_ID)
+        if len(ids):
+            n = lib.tb_world_body_ids(w, ffi.from_buffer("tb_body_id[]", ids), len(ids))
+        return Bodies(ids[:n])
+
+    def body_type(self, body):
+        """"static" or "dynamic"."""
+        out = ffi.new("tb_body_type*")
+        self._check(lib.tb_body_get_type(self._handle(), _as_body("body", body)._c(), out))
+        return "static" if out[0] == lib.TB_BODY_STATIC else "dynamic"
+
+    def pose(self, body):
+        """(position (3,), rotation (4,) x y z w) of one body, float32."""
+        p, q = ffi.new("tb_vec3*"), ffi.new("tb_quat*")
+        self._check(lib.tb_body_get_pose(self._handle(), _as_body("body", body)._c(), p, q))
+        return (np.array([p.x, p.y, p.z], dtype=np.float32),
+                np.array([q.x, q.y, q.z, q.w], dtype=np.float32))
+
+    def set_pose(self, body, position, rotation=(0.0, 0.0, 0.0, 1.0)):
+        """Move one body (teleport) to `position`, turned by `rotation` (x y z w)."""
+        b = _as_body("body", body)
+        p, q = _vec3("position", position), _quat("rotation", rotation)
+        self._check(lib.tb_body_set_pose(self._handle(), b._c(), p, q))
+
+    def velocity(self, body):
+        """(linear m/s (3,), angular rad/s (3,)) of one body, float32."""
+        v, a = ffi.new("tb_vec3*"), ffi.new("tb_vec3*")
+        self._check(lib.tb_body_get_velocity(self._handle(), _as_body("body", body)._c(), v, a))
+        return (np.array([v.x, v.y, v.z], dtype=np.float32),
+                np.array([a.x, a.y, a.z], dtype=np.float32))
+
+    def set_velocity(self, body, linear=(0.0, 0.0, 0.0), angular=(0.0, 0.0, 0.0)):
+        b = _as_body("body", body)
+        v, a = _vec3("linear", linear), _vec3("angular", angular)
+        self._check(lib.tb_body_set_velocity(self._handle(), b._c(), v, a))
+
+    def apply_impulse(self, body, impulse, point=None):
+        """Apply `impulse` (N s) at world `point` (default: the body's origin, so it does
+        not spin it); no effect on static bodies."""
+        b = _as_body("body", body)
+        j = _vec3("impulse", impulse)
+        at = self.pose(b)[0] if point is None else point
+        self._check(lib.tb_body_apply_impulse(self._handle(), b._c(), j, _vec3("point", at)))
+
+    def mass(self, body):
+        """(mass kg, principal inertia (3,) kg m^2); mass 0 for a static body."""
+        m, i = ffi.new("float*"), ffi.new("tb_vec3*")
+        self._check(lib.tb_body_get_mass(self._handle(), _as_body("body", body)._c(), m, i))
+        return m[0], np.array([i.x, i.y, i.z], dtype=np.float32)
 
     def transforms(self, bodies):
-        """Positions (n x 3) and rotations (n x 4, x y z w) as float32 arrays, read in one
-        tb_world_read_transforms call."""
-        positions = np.empty((len(bodies), 3), dtype=np.float32)
-        rotations = np.empty((len(bodies), 4), dtype=np.float32)
-        self._check(lib.tb_world_read_transforms(
-            self._w, bodies.ids, len(bodies), ffi.from_buffer("tb_vec3[]", positions),
-            ffi.from_buffer("tb_quat[]", rotations)))
+        """Positions (n, 3) and rotations (n, 4, x y z w) of a Body or Bodies as float32
+        arrays, in one tb_world_read_transforms call."""
+        ids, n, keep = _as_bodies("bodies", bodies)
+        positions = np.empty((n, 3), dtype=np.float32)
+        rotations = np.empty((n, 4), dtype=np.float32)
+        if n:
+            self._check(lib.tb_world_read_transforms(
+                self._handle(), ids, n, ffi.from_buffer("tb_vec3[]", positions),
+                ffi.from_buffer("tb_quat[]", rotations)))
+        else:
+            self._handle()
         return positions, rotations
 
-    def velocity(self, bodies, k):
-        linear, angular = ffi.new("tb_vec3*"), ffi.new("tb_vec3*")
-        self._check(lib.tb_body_get_velocity(self._w, bodies.ids[k], linear, angular))
-        return (linear.x, linear.y, linear.z), (angular.x, angular.y, angular.z)
+    def aabbs(self, bodies):
+        """World-space boxes (mins (n, 3), maxs (n, 3)) as the last step's broadphase saw
+        them."""
+        ids, n, keep = _as_bodies("bodies", bodies)
+        mins = np.empty((n, 3), dtype=np.float32)
+        maxs = np.empty((n, 3), dtype=np.float32)
+        if n:
+            self._check(lib.tb_world_read_aabbs(
+                self._handle(), ids, n, ffi.from_buffer("tb_vec3[]", mins),
+                ffi.from_buffer("tb_vec3[]", maxs)))
+        else:
+            self._handle()
+        return mins, maxs
 
-    # ---- plugins ------------------------------------------------------------------------
+    def contacts(self):
+        """Contact points of the last step, grouped by pair, as a numpy structured array of
+        tumble.CONTACT: a and b (BODY_ID; the normal points from a to b), point, normal,
+        separation, normal_impulse, friction_impulse, feature."""
+        w = self._handle()
+        count = ffi.new("uint32_t*")
+        self._check(lib.tb_world_read_contacts(w, ffi.NULL, 0, count))
+        out = np.zeros(count[0], dtype=CONTACT)
+        if count[0]:
+            self._check(lib.tb_world_read_contacts(
+                w, ffi.from_buffer("tb_contact[]", out), len(out), count))
+        return out[:count[0]]
+
+    # ---- stepping and stats ----------------------------------------------------------------
+
+    def step(self, dt=1.0 / 60.0, n=1):
+        """Advance `n` steps of `dt` seconds in one queue submission (n = 0 does nothing)."""
+        dt = _real("dt", dt)
+        n = _count("n", n, "a non-negative integer (the number of steps)")
+        self._check(lib.tb_world_step_n(self._handle(), dt, n))
+
+    def stats(self):
+        """tb_world_stats as a dict of its field names (body_count, contact_count, steps,
+        gpu_ms, validation_messages, ...); broadphase as its name, stages as a dict of
+        stage name to GPU ms."""
+        s = ffi.new("tb_world_stats*")
+        self._check(lib.tb_world_get_stats(self._handle(), s))
+        out = {}
+        for name, _ in ffi.typeof("tb_world_stats").fields:
+            if name in ("stage_count", "stages"):
+                continue
+            value = getattr(s, name)
+            out[name] = ffi.string(value).decode() if name == "broadphase" else value
+        out["stages"] = {ffi.string(s.stages[i].name).decode(): s.stages[i].ms
+                         for i in range(s.stage_count)}
+        return out
+
+    # ---- plugins and shaders ---------------------------------------------------------------
 
     def load_plugin(self, path):
         """Load a plugin (abi/tumble_plugin.h) into the world; returns its Plugin."""
+        p = _path("path", path)
         out = ffi.new("tb_plugin_id*")
-        self._check(lib.tb_world_load_plugin(self._w, os.fsencode(path), out))
+        self._check(lib.tb_world_load_plugin(self._handle(), p, out))
         return Plugin(self, out[0])
 
     def set_shader_dir(self, path):
         """Run the step's shaders from the GLSL tree at `path` and reload them when they
         change (shader hot-reload; None stops watching). Compile errors go to the log."""
-        self._check(lib.tb_world_set_shader_dir(
-            self._w, ffi.NULL if path is None else os.fsencode(path)))
-
-    # ---- stepping and stats ---------------------------------------------------------------
-
-    def step(self, dt=1.0 / 60.0, n=1):
-        self._check(lib.tb_world_step_n(self._w, dt, n))
-
-    def stats(self):
-        s = ffi.new("tb_world_stats*")
-        self._check(lib.tb_world_get_stats(self._w, s))
-        stages = {ffi.string(s.stages[i].name).decode(): s.stages[i].ms
-                  for i in range(s.stage_count)}
-        return {"bodies": s.body_count, "pairs": s.pair_count, "contacts": s.contact_count,
-                "steps": s.steps, "gpu_ms": s.gpu_ms, "stages": stages,
-                "broadphase": ffi.string(s.broadphase).decode(),
-                "validation_messages": s.validation_messages}
+        p = ffi.NULL if path is None else _path("path", path)
+        self._check(lib.tb_world_set_shader_dir(self._handle(), p))

@@ -1,0 +1,189 @@
+"""The binding's reach over include/tumble.h, on lavapipe: every shape, single bodies'
+poses, velocities and impulses, gravity, destroy, contacts as a numpy structured array,
+stats, the log and the device. Scenes are a handful of bodies and tens of steps."""
+import numpy as np
+import pytest
+
+import tumble
+
+DT = 1 / 60
+
+
+def test_contact_dtype_matches_the_c_struct():
+    ffi = tumble.ffi
+    assert tumble.CONTACT.itemsize == ffi.sizeof("tb_contact")
+    for name, field in ffi.typeof("tb_contact").fields:
+        assert tumble.CONTACT.fields[name][1] == ffi.offsetof("tb_contact", name) == field.offset
+    assert tumble.CONTACT["point"].shape == (3,) and tumble.CONTACT["point"].base == np.float32
+    assert tumble.BODY_ID.itemsize == ffi.sizeof("tb_body_id")
+    assert tumble.BODY_ID.names == ("index1", "world", "generation")
+    assert tumble.BODY_ID.fields["generation"][1] == ffi.offsetof("tb_body_id", "generation")
+
+
+def test_box_resting_on_a_plane_has_contacts_that_carry_its_weight(make_world):
+    world = make_world()
+    ground = world.add_body(world.plane((0, 1, 0), 0.0), static=True)
+    box = world.add_body(world.box((0.5, 0.25, 0.5)), position=(0, 0.25, 0))
+    assert world.shape_type(world.box((1, 1, 1))) == "box"
+    world.step(DT, n=60)
+    contacts = world.contacts()
+    assert contacts.dtype == tumble.CONTACT and len(contacts) == 4
+    assert world.stats()["contact_count"] == 4
+    assert all(tumble.Body(*c["a"]) == ground and tumble.Body(*c["b"]) == box for c in contacts)
+    np.testing.assert_allclose(contacts["normal"], np.tile([0, 1, 0], (4, 1)), atol=1e-4)
+    assert np.all(np.abs(contacts["separation"]) < 0.02)
+    np.testing.assert_allclose(np.sort(np.abs(contacts["point"][:, [0, 2]]), axis=0),
+                               np.full((4, 2), 0.5), atol=0.01)
+    mass, inertia = world.mass(box)
+    assert mass == pytest.approx(1000 * 1.0 * 0.5 * 1.0)
+    assert inertia[1] == pytest.approx(mass * (1 + 1) / 12, rel=1e-4)
+    assert contacts["normal_impulse"].sum() == pytest.approx(mass * 9.81 * DT, rel=0.02)
+    assert len(set(contacts["feature"].tolist())) == 4
+    assert world.mass(ground)[0] == 0 and world.body_type(ground) == "static"
+    assert world.body_type(box) == "dynamic"
+
+
+def test_sphere_falls_with_gravity_and_gravity_can_change(make_world):
+    world = make_world(gravity=(0, -5, 0))
+    np.testing.assert_allclose(world.gravity, [0, -5, 0])
+    ball = world.add_body(world.sphere(0.5), position=(0, 10, 0))
+    world.step(DT, n=30)
+    (v, w), (p, q) = world.velocity(ball), world.pose(ball)
+    assert v[1] == pytest.approx(-5 * 0.5, rel=1e-3) and np.allclose(w, 0)
+    assert p[1] == pytest.approx(10 - 0.5 * 5 * 0.25, abs=0.02)
+    np.testing.assert_allclose(q, [0, 0, 0, 1], atol=1e-6)
+    world.gravity = (1, 0, 0)
+    world.step(DT, n=30)
+    v, _ = world.velocity(ball)
+    np.testing.assert_allclose(v, [0.5, -2.5, 0], rtol=1e-3, atol=1e-5)
+
+
+def test_poses_velocities_and_impulses_of_single_bodies(make_world):
+    world = make_world(gravity=(0, 0, 0))
+    ball = world.add_body(world.sphere(0.5, density=500))
+    mass, _ = world.mass(ball)
+    assert mass == pytest.approx(500 * 4 / 3 * np.pi * 0.125, rel=1e-5)
+    world.set_pose(ball, (1, 2, 3), (0, 0, np.sin(0.25), np.cos(0.25)))
+    p, q = world.pose(ball)
+    np.testing.assert_allclose(p, [1, 2, 3])
+    np.testing.assert_allclose(q, [0, 0, np.sin(0.25), np.cos(0.25)], atol=1e-6)
+    world.set_velocity(ball, linear=(0, 0, 2))
+    world.apply_impulse(ball, (mass * 3, 0, 0))                    # at its centre: no spin
+    v, w = world.velocity(ball)
+    np.testing.assert_allclose(v, [3, 0, 2], rtol=1e-5)
+    np.testing.assert_allclose(w, 0, atol=1e-6)
+    world.step(0.5)
+    np.testing.assert_allclose(world.pose(ball)[0], [2.5, 2, 4], atol=1e-4)
+    world.set_velocity(ball)
+    world.apply_impulse(ball, (0, 0, 1), point=world.pose(ball)[0] + (1, 0, 0))  # off centre
+    _, w = world.velocity(ball)
+    assert w[1] < 0 and abs(w[0]) < 1e-6                         # r x J = (0, -1, 0)
+
+
+def test_add_bodies_takes_rotations_velocities_and_body_properties(make_world):
+    world = make_world(gravity=(0, 0, 0))
+    quarter = (0, np.sin(np.pi / 4), 0, np.cos(np.pi / 4))
+    bodies = world.add_bodies(world.box((1, 0.5, 0.25)), [[0, 0, 0], [10, 0, 0]],
+                              rotations=quarter, velocities=[[1, 0, 0], [0, 2, 0]],
+                              angular_velocities=(0, 0, 0), mass=3, linear_damping=0.0)
+    p, q = world.transforms(bodies)
+    np.testing.assert_allclose(q, np.tile(quarter, (2, 1)), atol=1e-6)
+    assert world.mass(bodies[1])[0] == pytest.approx(3)
+    world.step(1.0)
+    p, _ = world.transforms(bodies)
+    np.testing.assert_allclose(p, [[1, 0, 0], [10, 2, 0]], atol=1e-4)
+    mins, maxs = world.aabbs(bodies)                              # as the step began
+    np.testing.assert_allclose(mins[0], [-0.25, -0.5, -1], atol=1e-4)   # turned a quarter
+    np.testing.assert_allclose(maxs[0][1:], [0.5, 1], atol=1e-4)
+    assert 0.25 - 1e-4 <= maxs[0][0] <= 1.25 + 1e-4              # widened along its path
+    floaty = world.add_body(world.sphere(0.1), (0, 5, 0), gravity_scale=0.0)
+    world.gravity = (0, -9.81, 0)
+    world.step(DT, n=10)
+    assert np.allclose(world.velocity(floaty)[0], 0)
+
+
+def test_hull_shape(make_world):
+    world = make_world()
+    cube = np.array([[x, y, z] for x in (0, 2) for y in (0, 2) for z in (0, 2)], float)
+    points = np.concatenate([cube, [[1, 1, 1], [1, 0, 1]]])        # inside, on a face
+    hull = world.hull(points)
+    assert world.shape_type(hull) == "hull"
+    info = world.hull_info(hull)
+    assert (info["vertex_count"], info["face_count"], info["edge_count"]) == (8, 6, 12)
+    assert info["volume"] == pytest.approx(8)
+    np.testing.assert_allclose(info["center_of_mass"], [1, 1, 1], atol=1e-5)
+    np.testing.assert_allclose(info["unit_inertia"], [8 / 12] * 3, rtol=1e-4)
+    vertices = world.hull_vertices(hull)
+    assert vertices.shape == (8, 3)
+    np.testing.assert_allclose(np.sort(np.abs(vertices).ravel()), 1, atol=1e-5)
+    world.add_body(world.plane((0, 1, 0)), static=True)
+    rock = world.add_body(hull, (0, 1.5, 0))
+    world.step(DT, n=60)
+    assert world.pose(rock)[0][1] == pytest.approx(1.0, abs=0.03)   # resting on a face
+    with pytest.raises(tumble.TumbleError) as caught:
+        world.hull([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0]])    # flat: no volume
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    with pytest.raises(tumble.TumbleError):
+        world.hull_info(world.sphere(1))
+
+
+def test_destroy_bodies_and_shapes(make_world):
+    world = make_world()
+    ball = world.sphere(0.5)
+    bodies = world.add_bodies(ball, np.arange(12, dtype=float).reshape(4, 3) * 2)
+    assert len(world.body_ids()) == 4
+    world.destroy(bodies[1])
+    assert world.is_valid(bodies).tolist() == [True, False, True, True]
+    with pytest.raises(tumble.TumbleError, match=r"what\[1\].*nothing was destroyed") as caught:
+        world.destroy(bodies)
+    assert caught.value.code == tumble.lib.TB_ERROR_STALE_ID
+    assert world.stats()["body_count"] == 3
+    with pytest.raises(ValueError, match="twice"):
+        world.destroy(bodies[[0, 0]])
+    with pytest.raises(tumble.TumbleError) as caught:
+        world.destroy(ball)                                        # bodies still use it
+    assert caught.value.code == tumble.lib.TB_ERROR_IN_USE
+    rest = bodies[[0, 2, 3]]
+    assert world.body_ids().index(rest).tolist() == [0, 1, 2]
+    world.destroy(rest)
+    assert len(world.body_ids()) == 0
+    world.destroy(ball)
+    assert not world.is_valid(ball)
+    with pytest.raises(tumble.TumbleError) as caught:
+        world.velocity(bodies[0])
+    assert caught.value.code == tumble.lib.TB_ERROR_STALE_ID and caught.value.result
+    world.step(DT)
+    assert world.stats()["body_count"] == 0
+
+
+def test_bodies_index_maps_contacts_to_bodies(make_world):
+    world = make_world()
+    world.add_body(world.plane((0, 1, 0)), static=True)
+    pile = world.add_bodies(world.box((0.5, 0.5, 0.5)), [[0, 0.5, 0], [0, 1.5, 0], [5, 0.5, 0]])
+    world.step(DT, n=20)
+    contacts = world.contacts()
+    a, b = pile.index(contacts["a"]), pile.index(contacts["b"])
+    pairs = {tuple(sorted((int(i), int(j)))) for i, j in zip(a, b)}
+    assert pairs == {(-1, 0), (-1, 2), (0, 1)}                    # -1: the ground
+    assert pile.index(pile[2]) == 2 and pile.index(world.body_ids()[0]) == -1
+    assert len(pile[1:]) == 2 and len(pile + pile[:1]) == 4 and list(pile)[1] == pile[1]
+
+
+def test_stats_device_log_and_version(make_world):
+    lines = []
+    world = make_world(broadphase="sap", substeps=4, log=lambda level, text: lines.append(
+        (level, text)))
+    world.add_bodies(world.sphere(0.5), [[0, 0, 0], [0, 0.9, 0]])
+    world.step(DT, n=3)
+    stats = world.stats()
+    assert stats["broadphase"] == "sap" and stats["steps"] == 3 and stats["submits"] == 1
+    assert stats["body_count"] == 2 and stats["shape_count"] == 1 and stats["pair_count"] == 1
+    assert stats["gpu_ms"] > 0 and "integrate/integrate" in stats["stages"]
+    info = world.device_info()
+    assert info["is_cpu"] and "llvmpipe" in info["name"] and info["subgroup_size"] > 0
+    with pytest.raises(tumble.TumbleError):
+        world.sphere(0)
+    assert ("info", "sphere radius must be finite and > 0, not 0") in lines
+    assert tumble.version()[0] == tumble.HEADER_VERSION[0]
+    assert tumble.__version__ == "%d.%d.%d" % tumble.HEADER_VERSION
+    assert set(tumble.BROADPHASES) == {"default", "grid", "sap", "lbvh", "isap"}

@@ -1,0 +1,158 @@
+"""Wrong arguments are refused before any C call, with an error that names the argument;
+nothing is coerced (a (3, 2) array is not three positions, a string is not a number).
+One world serves the module: every refusal leaves it unchanged."""
+import numpy as np
+import pytest
+
+import tumble
+
+
+@pytest.fixture(scope="module")
+def world():
+    w = tumble.World()
+    yield w
+    assert w.stats()["validation_messages"] == 0
+    w.close()
+
+
+@pytest.fixture(scope="module")
+def ball(world):
+    return world.sphere(0.5)
+
+
+@pytest.mark.parametrize("positions, error, words", [
+    (np.zeros((3, 2)), ValueError, r"positions must be an \(n, 3\) array.*shape \(3, 2\)"),
+    (np.zeros((2, 2, 3)), ValueError, r"positions must be an \(n, 3\).*shape \(2, 2, 3\)"),
+    (np.zeros(6), ValueError, r"positions must be an \(n, 3\).*shape \(6,\)"),
+    (np.zeros((2, 3), dtype=complex), TypeError, "positions must hold real numbers.*complex"),
+    (np.array([["1", "2", "3"]]), TypeError, "positions must hold real numbers"),
+    ("1 2 3", TypeError, "positions must be real numbers"),
+    ([[0, 0, 0], [1, 2]], ValueError, "positions must be a rectangular array"),
+    ([[0, None, 0]], TypeError, "positions must hold real numbers.*object"),
+    (np.ones((1, 3), dtype=bool), TypeError, "positions must hold real numbers.*bool"),
+])
+def test_add_bodies_refuses_positions_that_are_not_n_by_3_reals(world, ball, positions, error,
+                                                                words):
+    before = world.stats()["body_count"]
+    with pytest.raises(error, match=words):
+        world.add_bodies(ball, positions)
+    assert world.stats()["body_count"] == before
+
+
+def test_add_bodies_refuses_mismatched_and_wrong_per_body_arrays(world, ball):
+    two = np.zeros((2, 3))
+    with pytest.raises(ValueError, match="velocities has 3 rows but there are 2 bodies"):
+        world.add_bodies(ball, two, velocities=np.zeros((3, 3)))
+    with pytest.raises(ValueError, match=r"rotations must be an \(n, 4\) array"):
+        world.add_bodies(ball, two, rotations=np.zeros((2, 3)))
+    with pytest.raises(TypeError, match="angular_velocities must hold real numbers"):
+        world.add_bodies(ball, two, angular_velocities=np.zeros((2, 3), dtype=complex))
+    with pytest.raises(TypeError, match="mass must be a real number"):
+        world.add_bodies(ball, two, mass="3")
+    with pytest.raises(TypeError, match="static must be True or False"):
+        world.add_bodies(ball, two, static="yes")
+    with pytest.raises(TypeError, match="shape must be a tumble.Shape"):
+        world.add_bodies("sphere", two)
+    with pytest.raises(ValueError, match="inertia must be 3 numbers"):
+        world.add_bodies(ball, two, inertia=(1, 2))
+    with pytest.raises(tumble.TumbleError, match="mass"):           # the library's check
+        world.add_bodies(ball, two, mass=-1)
+    assert world.add_bodies(ball, np.zeros((0, 3))).ids.shape == (0,)
+    assert world.stats()["body_count"] == 0
+
+
+def test_step_refuses_bad_counts_and_times(world):
+    with pytest.raises(ValueError, match=r"n must be a non-negative integer \(the number of "
+                                         r"steps\) below 2\^32, got -1"):
+        world.step(n=-1)
+    with pytest.raises(ValueError, match="n must be .* got 4294967296"):
+        world.step(n=2 ** 32)
+    with pytest.raises(TypeError, match="n must be a non-negative integer.*2.5"):
+        world.step(n=2.5)
+    with pytest.raises(TypeError, match="dt must be a real number.*'fast'"):
+        world.step("fast")
+    with pytest.raises(TypeError, match="dt must be a real number"):
+        world.step(1j)
+    with pytest.raises(tumble.TumbleError, match="dt") as caught:
+        world.step(-0.1)
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    world.step(n=0)
+    assert world.stats()["steps"] == 0
+
+
+def test_shapes_and_single_bodies_name_their_arguments(world, ball):
+    with pytest.raises(TypeError, match="radius must be a real number"):
+        world.sphere("big")
+    with pytest.raises(ValueError, match=r"half_extents must be 3 numbers, got an array of "
+                                         r"shape \(2,\)"):
+        world.box((1, 1))
+    with pytest.raises(TypeError, match="normal must hold real numbers"):
+        world.plane((0, 1j, 0))
+    with pytest.raises(TypeError, match="friction must be a real number"):
+        world.box((1, 1, 1), friction="high")
+    with pytest.raises(ValueError, match=r"points must be an \(n, 3\) array"):
+        world.hull(np.zeros((4, 2)))
+    with pytest.raises(TypeError, match="body must be a tumble.Body"):
+        world.velocity(ball)
+    with pytest.raises(TypeError, match="bodies must be tumble.Bodies or a tumble.Body"):
+        world.transforms([1, 2, 3])
+    body = world.add_body(ball, (0, 50, 0))
+    with pytest.raises(ValueError, match="rotation must be 4 numbers"):
+        world.set_pose(body, (0, 0, 0), (0, 0, 1))
+    with pytest.raises(ValueError, match="impulse must be 3 numbers"):
+        world.apply_impulse(body, (1, 2))
+    with pytest.raises(TypeError, match="point must hold real numbers"):
+        world.apply_impulse(body, (1, 2, 3), point=("a", "b", "c"))
+    with pytest.raises(ValueError, match="gravity must be 3 numbers"):
+        world.gravity = (0, -9.81)
+    with pytest.raises(TypeError, match="what must be a tumble.Body, Bodies or Shape"):
+        world.destroy(3)
+    with pytest.raises(TypeError, match="path must be a path"):
+        world.load_plugin(42)
+    world.destroy(body)
+
+
+def test_world_arguments():
+    with pytest.raises(ValueError, match="broadphase must be one of 'default', 'grid', 'sap', "
+                                         "'lbvh', 'isap', got 'octree'"):
+        tumble.World(broadphase="octree")
+    with pytest.raises(ValueError, match="broadphase must be one of"):
+        tumble.World(broadphase=3)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'gravty'.*gravity"):
+        tumble.World(gravty=(0, 0, 0))
+    with pytest.raises(ValueError, match="substeps must be a non-negative integer below 2"):
+        tumble.World(substeps=-1)
+    with pytest.raises(TypeError, match="contact_hertz must be a real number"):
+        tumble.World(contact_hertz="60")
+    with pytest.raises(TypeError, match="log must be a callable"):
+        tumble.World(log="stderr")
+    with pytest.raises(tumble.TumbleError, match="substeps") as caught:
+        tumble.World(substeps=0)                                    # the library's range
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    with pytest.raises(tumble.TumbleError) as caught:
+        tumble.World(device="no such device")
+    assert caught.value.code == tumble.lib.TB_ERROR_NO_DEVICE
+
+
+def test_plugin_arguments(world):
+    with pytest.raises(tumble.TumbleError, match="missing.so"):
+        world.load_plugin("/nonexistent/missing.so")
+
+
+def test_use_after_close_is_a_clear_error():
+    w = tumble.World()
+    ball = w.sphere(0.5)
+    bodies = w.add_bodies(ball, [[0, 0, 0]])
+    w.close()
+    assert w.closed
+    w.close()                                                      # twice is fine
+    for call in (lambda: w.step(), lambda: w.transforms(bodies), lambda: w.sphere(1),
+                 lambda: w.add_bodies(ball, [[0, 0, 0]]), lambda: w.stats(),
+                 lambda: w.contacts(), lambda: w.gravity, lambda: w.velocity(bodies[0]),
+                 lambda: w.destroy(bodies), lambda: w.load_plugin("x.so")):
+        with pytest.raises(tumble.ClosedError, match="tumble.World was closed"):
+            call()
+    with tumble.World() as w2:
+        pass
+    with pytest.raises(tumble.ClosedError):
+        w2.step()
