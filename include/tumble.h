@@ -328,6 +328,9 @@ TB_API tb_result tb_shape_get_hull_vertices(const tb_world* world, tb_shape_id s
 TB_API tb_result tb_shape_destroy(tb_world* world, tb_shape_id shape);
 TB_API int tb_shape_is_valid(const tb_world* world, tb_shape_id shape);
 TB_API tb_result tb_shape_get_type(const tb_world* world, tb_shape_id shape, tb_shape_type* out);
+/// Ids of live shapes in slot order (a shape's slot is index1 - 1, the index the GPU shape
+/// table and tb_vulkan_bodies use); returns how many were written (at most `capacity`).
+TB_API uint32_t tb_world_shape_ids(const tb_world* world, tb_shape_id* out, uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------
  * Bodies

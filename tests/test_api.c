@@ -555,6 +555,33 @@ static void test_shape_ids(void** state)
     assert_int_equal(t, TB_SHAPE_BOX);
 }
 
+/* tb_world_shape_ids: the live shapes in slot order, a freed slot skipped until reused (then
+ * with its new generation), at most `capacity`, nothing for a NULL output or world. */
+static void test_world_shape_ids(void** state)
+{
+    fixture* fx = *state;
+    tb_world* w = fx->w;
+    tb_shape_id ids[16];
+    uint32_t before = tb_world_shape_ids(w, ids, 16);
+    assert_true(before >= 2 && before < 14);
+    for (uint32_t i = 0; i < before; i++) {
+        assert_true(tb_shape_is_valid(w, ids[i]));
+        if (i) assert_true(ids[i].index1 > ids[i - 1].index1);
+    }
+    tb_shape_id a = th_sphere(w, 1), b = th_sphere(w, 2), c = th_sphere(w, 3);
+    th_assert_ok(tb_shape_destroy(w, b));
+    assert_int_equal(tb_world_shape_ids(w, ids, 16), before + 2);
+    assert_memory_equal(&ids[before], &a, sizeof a);
+    assert_memory_equal(&ids[before + 1], &c, sizeof c);
+    tb_shape_id again = th_sphere(w, 2);
+    assert_int_equal(again.index1, b.index1);
+    assert_int_equal(tb_world_shape_ids(w, ids, 16), before + 3);
+    assert_memory_equal(&ids[before + 1], &again, sizeof again);
+    assert_int_equal(tb_world_shape_ids(w, ids, 1), 1);
+    assert_int_equal(tb_world_shape_ids(w, NULL, 16), 0);
+    assert_int_equal(tb_world_shape_ids(NULL, ids, 16), 0);
+}
+
 /* ---- all-or-none, in use, capacity ------------------------------------------------------ */
 
 static void test_create_many_all_or_none(void** state)
@@ -643,6 +670,7 @@ int main(void)
         T(test_foreign_body_id),
         T(test_stale_body_ids),
         T(test_shape_ids),
+        T(test_world_shape_ids),
         T(test_create_many_all_or_none),
         T(test_shape_in_use),
         cmocka_unit_test(test_capacity),

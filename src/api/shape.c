@@ -154,6 +154,16 @@ int tb_shape_is_valid(const tb_world* w, tb_shape_id id)
     return s->alive && s->generation == id.generation;
 }
 
+uint32_t tb_world_shape_ids(const tb_world* w, tb_shape_id* out, uint32_t capacity)
+{
+    if (!w || !out) return 0;
+    uint32_t n = 0;
+    for (uint32_t s = 0; s < w->shape_slots.used && n < capacity; s++)
+        if (w->shapes[s].alive)
+            out[n++] = (tb_shape_id){ s + 1, w->serial, w->shapes[s].generation };
+    return n;
+}
+
 tb_result tb_shape_get_type(const tb_world* cw, tb_shape_id id, tb_shape_type* out)
 {
     tb_world* w = (tb_world*)cw;
