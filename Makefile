@@ -1,6 +1,7 @@
 # Tumble — the only build entry point.
 #   make            build libtumble.so / libtumble.a (SPIR-V embedded) and the tools
-#   make deps       install missing Debian packages
+#   make deps [DEPS="build run test video window"]  install missing Debian packages
+#                   (default: build run test; run, bench and video check their own first)
 #   make test       build and run the tests on lavapipe with the validation layers on
 #   make install [PREFIX=/usr/local] [DESTDIR=] [INSTALL_LIBS="shared static"]
 #                   headers, libtumble.so.X.Y.Z with its soname links, libtumble.a, tumble.pc
@@ -69,7 +70,7 @@ RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
 deps:
-	$(Q)sh tools/deps
+	$(Q)sh tools/deps $(DEPS)
 
 # --- shaders: GLSL -> SPIR-V (validated) -> C array embedded in the library -------------
 $(BUILD)/spv/%.spv: glsl/%.comp
@@ -97,7 +98,13 @@ $(BUILD)/render-spv/%.spv: tools/render/shaders/%
 	$(Q)$(GLSLANG) -V --target-env vulkan1.2 -Iglsl/common -Itools/render/shaders --quiet --depfile $@.d -o $@ $< >/dev/null
 	$(Q)$(SPIRVVAL) --target-env vulkan1.2 $@
 
-$(BUILD)/render_shaders.c: $(RENDER_SPV) tools/embed-spirv Makefile
+# What the renderer was built with (GLFW or not): the tools relink when it changes, e.g.
+# after `sh tools/deps window`.
+$(BUILD)/render-config: FORCE
+	@mkdir -p $(BUILD)
+	@echo 'glfw=$(HAVE_GLFW)' | cmp -s - $@ || echo 'glfw=$(HAVE_GLFW)' > $@
+
+$(BUILD)/render_shaders.c: $(RENDER_SPV) tools/embed-spirv Makefile $(BUILD)/render-config
 	$(call say,GEN,$@)
 	$(Q)sh tools/embed-spirv render_shaders.h tr_shader_blob tr_shader_blobs $(BUILD)/render-spv $(RENDER_SHADERS:tools/render/shaders/%=%) > $@
 
@@ -203,8 +210,8 @@ print-libs:
 	@echo $(LIBS)
 
 # --- tools and tests --------------------------------------------------------------------
-TOOL_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -Itools/scenes -Itools/render -Itools/render/shaders -Itests -Iglsl/common -I$(BUILD) $(RENDER_DEFS)
-TOOL_DEPS   := $(SCENES_SRC) $(RENDER_SRC) $(wildcard tools/render/*.h tools/render/shaders/*.h tools/scenes/*.h) $(BUILD)/libtumble.a
+TOOL_CFLAGS := $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -Itools/scenes -Itools/render -Itools/render/shaders -Itools/run -Itests -Iglsl/common -I$(BUILD) $(RENDER_DEFS)
+TOOL_DEPS   := $(SCENES_SRC) $(RENDER_SRC) $(wildcard tools/render/*.h tools/render/shaders/*.h tools/scenes/*.h tools/run/*.h) $(BUILD)/libtumble.a
 TOOL_LINK   := $(SCENES_SRC) $(RENDER_SRC) $(BUILD)/libtumble.a $(RENDER_LIBS) $(LIBS)
 
 $(BUILD)/bench: tools/bench/bench.c $(TOOL_DEPS)
@@ -374,18 +381,26 @@ check-readme: $(BUILD)/libtumble.a $(BUILD)/readme/example.c
 	$(Q)$(CC) $(CSTD) $(WARN) -Werror -Iinclude -o $(BUILD)/readme/example $(BUILD)/readme/example.c $(BUILD)/libtumble.a $(LIBS)
 	$(Q)env $(TEST_ENV) $(BUILD)/readme/example >/dev/null
 
-run: deps all
+# run, bench and video check their packages before anything is built or run (a
+# prerequisite would race the build under -j), then build through a sub-make.
+run:
+	$(Q)sh tools/deps run
+	$(Q)$(MAKE) --no-print-directory all
 	@mkdir -p $(BUILD)/run
 	$(Q)$(BUILD)/tumble-run --png $(BUILD)/run/final.png
 
 SCENE ?= freefall
 N     ?= 0
 STEPS ?= 0
-bench: all
+bench:
+	$(Q)sh tools/deps run
+	$(Q)$(MAKE) --no-print-directory all
 	$(Q)$(BUILD)/bench --scene $(SCENE) --n $(N) --steps $(STEPS) $(if $(BROADPHASE),--broadphase $(BROADPHASE)) $(if $(FRAMES),--frames $(FRAMES) --every $(or $(EVERY),1) $(if $(CONTACTS),--contacts))
 
 # A video of a bench scene: make video SCENE=freefall N=2000 STEPS=240 (needs ffmpeg).
-video: all
+video:
+	$(Q)sh tools/deps video
+	$(Q)$(MAKE) --no-print-directory all
 	@rm -rf $(BUILD)/frames/$(SCENE) && mkdir -p $(BUILD)/frames/$(SCENE)
 	$(Q)$(BUILD)/bench --scene $(SCENE) --n $(N) --steps $(STEPS) --json-only --frames $(BUILD)/frames/$(SCENE) --every $(or $(EVERY),1) $(if $(CONTACTS),--contacts) >/dev/null
 	$(Q)tools/render/video $(BUILD)/frames/$(SCENE) $(BUILD)/$(SCENE).mp4

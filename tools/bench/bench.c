@@ -6,7 +6,10 @@
  *
  * N or S of 0 mean the scene's defaults (`make bench` passes 0 when they are unset).
  * The last line of stdout is always the JSON record, so scripts can take `tail -n 1`.
+ * Progress of the timed steps goes before it (to stderr with --json-only): a bar redrawn in
+ * place on a terminal, else a line every tenth of the steps.
  */
+#include "progress.h"
 #include "render.h"
 #include "scenes.h"
 #include "tumble.h"
@@ -288,20 +291,38 @@ static tb_result write_frame(frame_writer* f)
     return r;
 }
 
-static tb_result timed_steps(tb_world* world, float dt, samples* s, frame_writer* frames)
+/* Progress of the timed steps between them, outside the timings: a bar on a terminal, a
+ * line every tenth otherwise; on stderr with --json-only (stdout is the JSON alone). */
+static tb_result timed_steps(tb_world* world, float dt, samples* s, frame_writer* frames,
+                             FILE* progress_out)
 {
-    for (uint32_t i = 0; i < s->steps; i++) {
+    progress bar;
+    progress_begin(&bar, progress_out, s->steps);
+    const uint32_t tenth = s->steps / 10 ? s->steps / 10 : 1;
+    tb_result r = TB_OK;
+    for (uint32_t i = 0; i < s->steps && r == TB_OK; i++) {
         double t0 = now_ms();
-        tb_result r = tb_world_step(world, dt);
+        r = tb_world_step(world, dt);
         double t1 = now_ms();
         if (r == TB_OK && frames->renderer && i % frames->every == 0) r = write_frame(frames);
-        if (r != TB_OK) return r;
         tb_world_stats st;
-        r = tb_world_get_stats(world, &st);
-        if (r != TB_OK) return r;
+        if (r == TB_OK) r = tb_world_get_stats(world, &st);
+        if (r != TB_OK) break;
         samples_add(s, i, t1 - t0, &st);
+        uint32_t done = i + 1;
+        if (frames->renderer)
+            progress_update(&bar, done, "step %u/%u, %u frames", done, s->steps, frames->written);
+        else
+            progress_update(&bar, done, "step %u/%u", done, s->steps);
+        if ((done % tenth == 0 || done == s->steps) && frames->renderer)
+            progress_line(&bar, "step %6u/%u  %.3f ms GPU  %.3f ms wall  %u frames", done,
+                          s->steps, st.gpu_ms, t1 - t0, frames->written);
+        else if (done % tenth == 0 || done == s->steps)
+            progress_line(&bar, "step %6u/%u  %.3f ms GPU  %.3f ms wall", done, s->steps,
+                          st.gpu_ms, t1 - t0);
     }
-    return TB_OK;
+    progress_end(&bar);
+    return r;
 }
 
 /* ---- output ---- */
@@ -490,7 +511,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
         code = fail(world, "tr_create", r);
     else if (o->warmup && (r = tb_world_step_n(world, sc->dt, o->warmup)) != TB_OK)
         code = fail(world, "tb_world_step_n (warm-up)", r);
-    else if ((r = timed_steps(world, sc->dt, s, &frames)) != TB_OK)
+    else if ((r = timed_steps(world, sc->dt, s, &frames, o->json_only ? stderr : stdout)) != TB_OK)
         code = fail(world, "tb_world_step", r);
     else if ((r = sc->check(world, inst, o->warmup + o->steps, sc->dt, checks)) != TB_OK)
         code = fail(world, "scene check", r);

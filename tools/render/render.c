@@ -1,9 +1,10 @@
 /* tools/render: the public tr_ calls. A frame is one command buffer on the world's queue:
  * a barrier after the world's compute writes, one render pass (planes, then instanced
- * spheres and boxes, then AABB lines, then contact lines), a copy of the colour image into
- * a host-visible buffer, and a wait on our own fence. Bodies and contacts are never looped
- * over on the host, except to read AABBs for the automatic camera and to know whether a
- * plane exists. */
+ * spheres, boxes and hulls, then AABB lines, then contact lines, depth-tested, then the
+ * static bodies see-through), a copy of the colour image into a host-visible buffer, and a
+ * wait on our own fence. Bodies and contacts are never looped over on the host, except to
+ * read AABBs for the automatic camera and to know whether a plane exists; shapes are, to
+ * keep a mesh per hull shape (render_hulls.c). */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -40,7 +41,7 @@ tr_options tr_default_options(void)
         .camera = { .eye = { 10, 8, 14 }, .target = { 0, 0, 0 }, .up = { 0, 1, 0 },
                     .fov_y_degrees = 45.0f, .automatic = 1 },
         .color = TR_COLOR_BY_ID, .speed_scale = 10.0f, .show_aabbs = 0, .show_grid = 1,
-        .show_contacts = 0,
+        .show_contacts = 0, .static_opacity = 0.3f,
     };
     return o;
 }
@@ -55,6 +56,8 @@ static tb_result check_options(tr_renderer* r, const tr_options* o)
         return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "unknown colour mode %d", (int)o->color);
     if (!(o->speed_scale > 0.0f) || !isfinite(o->speed_scale))
         return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "speed_scale must be finite and > 0");
+    if (!(o->static_opacity >= 0.0f && o->static_opacity <= 1.0f))
+        return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "static_opacity must be in [0, 1]");
     if (!tr_camera_valid(&o->camera))
         return tr_fail(r, TB_ERROR_INVALID_ARGUMENT, "bad camera: fov must be in (1, 179) "
                        "degrees and, unless automatic, eye apart from target with up not "
@@ -110,6 +113,7 @@ void tr_destroy(tr_renderer* r)
     /* Every frame waits for its fence before returning, so nothing is in flight here. */
     if (r->dev.device) {
         tr_pipelines_destroy(r);
+        tr_hulls_destroy(r);
         tr_gpu_destroy(r);
     }
     free(r);
@@ -163,6 +167,17 @@ static void fill_push(const tr_renderer* r, const tr_view* v, tr_push* p)
     p->light[3] = (float)v->floor_y;
     p->mode[1] = (uint32_t)r->options.color;
     p->mode[2] = r->options.show_grid ? TR_FLAG_GRID : 0;
+    if (r->options.static_opacity < 1.0f) p->mode[2] |= TR_FLAG_SEE_THROUGH;
+}
+
+/* The push constants of the see-through pass of static bodies. */
+static tr_push static_pass_push(const tr_renderer* r, const tr_push* p)
+{
+    tr_push s = *p;
+    uint32_t opacity = (uint32_t)lroundf(r->options.static_opacity * 255.0f);
+    s.mode[2] = (p->mode[2] & ~TR_FLAG_SEE_THROUGH) | TR_FLAG_STATIC_PASS |
+                (opacity << TR_OPACITY_SHIFT);
+    return s;
 }
 
 /* What one frame draws besides the camera. */
@@ -188,7 +203,26 @@ static void draw_mesh(const tr_renderer* r, tr_push* p, uint32_t type, const tr_
     vkCmdDrawIndexed(r->cb, m->index_count, slots, m->first_index, m->vertex_offset, 0);
 }
 
-/* The contact overlay last, over everything: one instance per manifold. */
+/* Spheres, boxes and each hull shape's mesh, every body slot an instance of each (the
+ * shaders hide the slots that are not theirs), with the bound mesh pipeline. */
+static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
+{
+    VkCommandBuffer cb = r->cb;
+    VkDeviceSize zero = 0;
+    vkCmdBindVertexBuffers(cb, 0, 1, &r->vertices.buffer, &zero);
+    vkCmdBindIndexBuffer(cb, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
+    draw_mesh(r, p, TB_GPU_SHAPE_SPHERE, &r->sphere, slots);
+    draw_mesh(r, p, TB_GPU_SHAPE_BOX, &r->cube, slots);
+    p->mode[0] = TB_GPU_SHAPE_HULL;
+    for (uint32_t i = 0; i < r->hull_draw_count; i++) {
+        const tr_hull_draw* h = &r->hull_draws[i];
+        p->mode[3] = h->shape_slot;
+        push(r, p);
+        vkCmdDrawIndexed(cb, h->index_count, slots, h->first_index, h->vertex_offset, 0);
+    }
+}
+
+/* The contact overlay after the opaque scene, depth-tested: one instance per manifold. */
 static void draw_contacts(const tr_renderer* r, tr_push* p, const tr_frame* f)
 {
     vkCmdBindPipeline(r->cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->contact_pipeline);
@@ -198,7 +232,8 @@ static void draw_contacts(const tr_renderer* r, tr_push* p, const tr_frame* f)
 }
 
 /* Everything inside the render pass. Planes go first: they fade out by blending over the
- * clear colour. Each body draw covers every body slot; the shaders hide what is not theirs. */
+ * clear colour. Each body draw covers every body slot; the shaders hide what is not theirs.
+ * See-through static bodies go last, blended over everything they hide. */
 static void record_draws(const tr_renderer* r, const tr_view* v, const tr_frame* f)
 {
     uint32_t slots = f->slots;
@@ -224,17 +259,20 @@ static void record_draws(const tr_renderer* r, const tr_view* v, const tr_frame*
     }
     if (!slots) return;
     vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->mesh_pipeline);
-    VkDeviceSize zero = 0;
-    vkCmdBindVertexBuffers(cb, 0, 1, &r->vertices.buffer, &zero);
-    vkCmdBindIndexBuffer(cb, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    draw_mesh(r, &p, TB_GPU_SHAPE_SPHERE, &r->sphere, slots);
-    draw_mesh(r, &p, TB_GPU_SHAPE_BOX, &r->cube, slots);
+    tr_push bodies = p;
+    draw_bodies(r, &bodies, slots);
     if (r->options.show_aabbs) {
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->line_pipeline);
         push(r, &p);
         vkCmdDraw(cb, 24, slots, 0, 0);
     }
     if (f->manifolds) draw_contacts(r, &p, f);
+    /* Opacity 0 leaves static bodies out altogether. */
+    if ((p.mode[2] & TR_FLAG_SEE_THROUGH) && r->options.static_opacity > 0.0f) {
+        vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->static_pipeline);
+        tr_push s = static_pass_push(r, &p);
+        draw_bodies(r, &s, slots);
+    }
 }
 
 static tb_result record(tr_renderer* r, const tr_view* v, const tr_frame* f)
@@ -329,6 +367,7 @@ tb_result tr_render(tr_renderer* r)
     tb_result res = tb_world_vulkan_bodies(r->world, &bodies);
     if (res) return tr_fail(r, res, "tb_world_vulkan_bodies: %s", tb_world_last_error(r->world));
     res = tr_bind_bodies(r, &bodies);
+    if (!res) res = tr_hulls_update(r, &bodies);
     if (res) return res;
     tr_frame frame = { .slots = bodies.slots };
     if (r->options.show_contacts) res = prepare_contacts(r, &frame);

@@ -35,8 +35,15 @@ typedef struct tr_options {
     int show_aabbs;            ///< draw world AABBs as lines; default 0
     int show_grid;             ///< ground grid on planes (or at y = 0 without one); default 1
     /// Draw the last step's contacts: each point a small magenta cross, its normal (from
-    /// body a towards b) a short yellow line; over everything (no depth test). Default 0.
+    /// body a towards b) a short yellow line; depth-tested against the scene (lifted a
+    /// little towards the eye, so contacts on visible surfaces show whole). Default 0.
     int show_contacts;
+    /// Opacity of static bodies other than planes (container walls, floors), 0..1. Below 1
+    /// their faces that look up (within about 45 degrees: floors, tops of walls) stay
+    /// opaque and the others are drawn last, blended over what they hide (only those turned
+    /// towards the eye), so a pile inside a container shows through the walls. Default
+    /// 0.3; 1 draws them opaque.
+    float static_opacity;
 } tr_options;
 
 tr_options tr_default_options(void);

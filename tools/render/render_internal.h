@@ -32,8 +32,17 @@ typedef struct tr_mesh {
     int32_t vertex_offset;
 } tr_mesh;
 
-/* A vertex of the unit meshes. */
+/* A vertex of the unit meshes and of the hull meshes. */
 typedef struct tr_vertex { float position[3], normal[3]; } tr_vertex;
+
+/* One hull shape's mesh (render_hulls.c), after the unit meshes in the shared vertex and
+ * index buffers: drawn from the same bindings (lavapipe at 128-bit vectors crashed, now and
+ * then, on draws from a second vertex buffer bound in the same render pass). */
+typedef struct tr_hull_draw {
+    uint32_t shape_slot;
+    uint32_t first_index, index_count;
+    int32_t vertex_offset;
+} tr_hull_draw;
 
 /* What the host knows of the scene for one frame. */
 typedef struct tr_scene {
@@ -72,6 +81,14 @@ struct tr_renderer {
     tr_buffer vertices, indices;
     tr_mesh sphere, cube;
 
+    /* Hull shapes (render_hulls.c): a mesh per hull shape, and what the last scan saw. */
+    tr_hull_draw* hull_draws;
+    uint32_t hull_draw_count;
+    tb_shape_id* shape_ids;        /* per shape slot; index1 0: no live shape */
+    uint32_t shape_capacity;
+    int hulls_scanned;
+    uint32_t scan_slots, scan_live;
+
     VkDescriptorSetLayout set_layout;
     VkDescriptorPool descriptor_pool;
     VkDescriptorSet set;
@@ -84,6 +101,7 @@ struct tr_renderer {
 
     VkPipelineLayout pipeline_layout;
     VkPipeline mesh_pipeline, plane_pipeline, line_pipeline, contact_pipeline;
+    VkPipeline static_pipeline;   /* see-through static bodies: blended, no depth writes */
 
     tr_camera last_camera;
     int has_frame;
@@ -114,7 +132,15 @@ uint32_t tr_cube_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_co
 #define TR_CUBE_VERTICES 24
 #define TR_CUBE_INDICES 36
 
-/* render_pipelines.c: descriptor set and the four pipelines */
+/* render_hulls.c: hull meshes */
+/// Triangles (counter-clockwise seen from outside) of the convex hull of `points`, as
+/// point indices in a malloc'd *out (3 per triangle); 0 when the points span no volume.
+uint32_t tr_hull_triangles(const tb_vec3* points, uint32_t count, uint32_t** out);
+/// Bring the hull meshes up to date with the world's shapes.
+tb_result tr_hulls_update(tr_renderer* r, const tb_vulkan_bodies* bodies);
+void tr_hulls_destroy(tr_renderer* r);
+
+/* render_pipelines.c: descriptor set and the five pipelines */
 tb_result tr_pipelines_create(tr_renderer* r);
 tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* bodies);
 tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* contacts);

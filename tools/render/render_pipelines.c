@@ -1,6 +1,6 @@
 /* The descriptor set that shows the world's body arrays (and its contact manifolds) to the
- * vertex shaders, and the four graphics pipelines: instanced meshes, plane quads with grid,
- * AABB lines, contact lines. Viewport and scissor are dynamic so that a size change keeps
+ * shaders, and the five graphics pipelines: instanced meshes, the same see-through (static
+ * bodies), plane quads with grid, AABB lines, contact lines. Viewport and scissor are dynamic so that a size change keeps
  * the pipelines. */
 #include <stddef.h>
 #include <string.h>
@@ -144,8 +144,8 @@ typedef struct pipeline_desc {
     const char* frag;
     VkPrimitiveTopology topology;
     int mesh_input;     /* tr_vertex attributes from binding 0 */
-    int blend;          /* alpha blending over what is there (planes fading out) */
-    int overlay;        /* no depth test or write: drawn over everything (contacts) */
+    int blend;          /* alpha blending over what is there (planes fading, see-through) */
+    int no_depth_write; /* depth-tested only (see-through static bodies) */
 } pipeline_desc;
 
 static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipeline* out)
@@ -190,8 +190,8 @@ static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipel
     };
     VkPipelineDepthStencilStateCreateInfo depth = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-        .depthTestEnable = p->overlay ? VK_FALSE : VK_TRUE,
-        .depthWriteEnable = p->overlay ? VK_FALSE : VK_TRUE,
+        .depthTestEnable = VK_TRUE,
+        .depthWriteEnable = p->no_depth_write ? VK_FALSE : VK_TRUE,
         .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
     };
     /* Blending keeps the destination alpha (1 from the clear), so the frame stays opaque. */
@@ -240,22 +240,25 @@ tb_result tr_pipelines_create(tr_renderer* r)
     static const pipeline_desc line = { "aabb.vert", "line.frag",
                                         VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0 };
     static const pipeline_desc contact = { "contacts.vert", "line.frag",
-                                           VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 1 };
+                                           VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0 };
+    static const pipeline_desc see_through = { "mesh.vert", "mesh.frag",
+                                               VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 1, 1 };
     tb_result res = create_layouts(r);
     if (!res) res = create_descriptor_set(r);
     if (!res) res = create_pipeline(r, &mesh, &r->mesh_pipeline);
     if (!res) res = create_pipeline(r, &plane, &r->plane_pipeline);
     if (!res) res = create_pipeline(r, &line, &r->line_pipeline);
     if (!res) res = create_pipeline(r, &contact, &r->contact_pipeline);
+    if (!res) res = create_pipeline(r, &see_through, &r->static_pipeline);
     return res;
 }
 
 void tr_pipelines_destroy(tr_renderer* r)
 {
     VkDevice d = r->dev.device;
-    VkPipeline* pipelines[4] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
-                                 &r->contact_pipeline };
-    for (int i = 0; i < 4; i++) {
+    VkPipeline* pipelines[5] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
+                                 &r->contact_pipeline, &r->static_pipeline };
+    for (int i = 0; i < 5; i++) {
         if (*pipelines[i]) vkDestroyPipeline(d, *pipelines[i], NULL);
         *pipelines[i] = VK_NULL_HANDLE;
     }

@@ -1,6 +1,6 @@
 /* tumble-run: what `make run` runs. Builds the default scene on the best device, steps it
- * in chunks with a progress line each, then prints speed, stage times, checks and a few
- * bodies' positions.
+ * in chunks with a progress line each (and a progress bar when stdout is a terminal), then
+ * prints speed, stage times, checks and a few bodies' positions.
  *
  *   tumble-run [--scene NAME] [--n N] [--steps S] [--png PATH] [--window] [--contacts]
  *
@@ -9,6 +9,7 @@
  * contact points and normals in either.
  * The device is the library's choice: TUMBLE_DEVICE if set, else the best GPU.
  */
+#include "progress.h"
 #include "render.h"
 #include "scenes.h"
 #include "tumble.h"
@@ -101,44 +102,64 @@ static int print_device(const tb_world* world)
     return 0;
 }
 
-/* Steps in CHUNKS pieces with a progress line each; *wall_s gets the time spent stepping
- * (read-backs for the progress lines excluded). */
+/* Steps in CHUNKS pieces with a progress line each (on a terminal, ten times as many
+ * pieces, a bar redrawn after each and the lines above it); *wall_s gets the time spent
+ * stepping (read-backs for the progress lines excluded). */
 static int step_in_chunks(tb_world* world, const scene* sc, const tb_body_id* sample,
                           uint32_t steps, double* wall_s)
 {
+    progress bar;
+    progress_begin(&bar, stdout, steps);
+    const uint32_t per_line = bar.bar ? 10 : 1;
+    const uint32_t pieces = CHUNKS * per_line;
     uint32_t done = 0;
     *wall_s = 0.0;
-    for (uint32_t c = 0; c < CHUNKS && done < steps; c++) {
-        /* Spread the remainder over the first chunks so the total is exactly `steps`. */
-        uint32_t chunk = steps / CHUNKS + (c < steps % CHUNKS ? 1 : 0);
+    progress_update(&bar, 0, "step 0/%u", steps);
+    for (uint32_t c = 0; c < pieces && done < steps; c++) {
+        /* Spread the remainder over the first pieces so the total is exactly `steps`. */
+        uint32_t chunk = steps / pieces + (c < steps % pieces ? 1 : 0);
         if (chunk == 0) continue;
         double t0 = now_s();
         tb_result r = tb_world_step_n(world, sc->dt, chunk);
         *wall_s += now_s() - t0;
-        if (r != TB_OK) return fail(world, "tb_world_step_n", r);
+        if (r != TB_OK) {
+            progress_end(&bar);
+            return fail(world, "tb_world_step_n", r);
+        }
         done += chunk;
-        printf("step %6u  t = %7.3f s", done, (double)done * sc->dt);
+        progress_update(&bar, done, "step %u/%u", done, steps);
+        if ((c + 1) % per_line != 0 && done < steps) continue;
+        char line[256];
+        int len = snprintf(line, sizeof line, "step %6u  t = %7.3f s", done,
+                           (double)done * sc->dt);
         if (sample) {
             tb_vec3 p;
             r = tb_world_read_transforms(world, sample, 1, &p, NULL);
-            if (r != TB_OK) return fail(world, "tb_world_read_transforms", r);
-            printf("  body 0 height %.4f m", p.y);
+            if (r != TB_OK) {
+                progress_end(&bar);
+                return fail(world, "tb_world_read_transforms", r);
+            }
+            len += snprintf(line + len, sizeof line - (size_t)len, "  body 0 height %.4f m", p.y);
         }
         tb_world_stats st;
         if (tb_world_get_stats(world, &st) == TB_OK)
-            printf("  pairs %u contacts %u colours %u  %.3f ms/step GPU", st.pair_count,
-                   st.contact_count, st.colour_count, st.gpu_ms);
-        printf("\n");
+            snprintf(line + len, sizeof line - (size_t)len,
+                     "  pairs %u contacts %u colours %u  %.3f ms/step GPU", st.pair_count,
+                     st.contact_count, st.colour_count, st.gpu_ms);
+        progress_line(&bar, "%s", line);
     }
+    progress_end(&bar);
     return 0;
 }
 
-/* The window's frame callback: one step per shown frame, progress every tenth. */
+/* The window's frame callback: one step per shown frame, progress every tenth (and a bar
+ * on a terminal). */
 typedef struct live_run {
     tb_world* world;
     const scene* sc;
     uint32_t steps, done;
     tb_result result;
+    progress bar;
 } live_run;
 
 static int live_frame(void* user)
@@ -147,8 +168,10 @@ static int live_frame(void* user)
     if (run->done >= run->steps || run->result != TB_OK) return 0;
     run->result = tb_world_step(run->world, run->sc->dt);
     run->done++;
+    progress_update(&run->bar, run->done, "step %u/%u", run->done, run->steps);
     if (run->done % (run->steps / CHUNKS ? run->steps / CHUNKS : 1) == 0)
-        printf("step %6u  t = %7.3f s\n", run->done, (double)run->done * run->sc->dt);
+        progress_line(&run->bar, "step %6u  t = %7.3f s", run->done,
+                      (double)run->done * run->sc->dt);
     return run->result == TB_OK;
 }
 
@@ -160,11 +183,13 @@ static int step_in_window(tb_world* world, const scene* sc, uint32_t steps, int 
     tr_renderer* renderer = NULL;
     tb_result r = tr_create(world, &ro, &renderer);
     if (r != TB_OK) return fail(world, "tr_create", r);
-    live_run run = { world, sc, steps, 0, TB_OK };
+    live_run run = { world, sc, steps, 0, TB_OK, { 0 } };
+    progress_begin(&run.bar, stdout, steps);
     const char* why = "";
     double t0 = now_s();
     r = tr_window_run(renderer, world, ro.width, ro.height, "Tumble", live_frame, &run, &why);
     *wall_s = now_s() - t0;
+    progress_end(&run.bar);
     tr_destroy(renderer);
     if (r != TB_OK) fprintf(stderr, "tumble-run: window: %s\n", why);
     if (run.result != TB_OK) return fail(world, "tb_world_step", run.result);

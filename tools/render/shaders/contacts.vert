@@ -3,7 +3,8 @@
  * world's manifold buffer (bound whole, or as much as one binding may hold; pc.mode.w is the
  * first manifold of the last step).
  * Each of the manifold's points gets a short line along the normal (from body a towards b)
- * and a small cross; vertices of points past the manifold's count are hidden. LINE_LIST,
+ * and a small cross; vertices of points past the manifold's count are hidden. Depth-tested
+ * against the scene, lifted towards the eye first (TR_CONTACT_LIFT_SHARE). LINE_LIST,
  * TB_MAX_MANIFOLD_POINTS * TR_CONTACT_VERTICES_PER_POINT vertices per instance. */
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -39,5 +40,8 @@ void main()
         world = p + (2.0 * end - 1.0) * arm * dir;
         out_color = vec3(TR_CONTACT_POINT_R, TR_CONTACT_POINT_G, TR_CONTACT_POINT_B) / 255.0;
     }
+    /* Towards the eye along the view ray (TR_CONTACT_LIFT_SHARE): the depth test then
+     * hides the overlay only behind something thicker than the lift. */
+    world += TR_CONTACT_LIFT_SHARE * (pc.eye.xyz - world);
     gl_Position = pc.view_proj * vec4(world, 1.0);
 }

@@ -18,9 +18,16 @@
 #define TR_U(x) uint(x)
 #endif
 
-/* mode.z */
+/* mode.z: flags in the low byte, the see-through pass's opacity (0..255) above them */
 #define TR_FLAG_GRID          TR_U(1)  /* draw grid lines on planes */
 #define TR_FLAG_DEFAULT_PLANE TR_U(2)  /* one horizontal grid under the scene, not a body */
+#define TR_FLAG_SEE_THROUGH   TR_U(4)  /* opaque body draws keep only the faces of static
+                                          bodies that look up; the others come last,
+                                          see-through (TR_FLAG_STATIC_PASS) */
+#define TR_FLAG_STATIC_PASS   TR_U(8)  /* this body draw shows static bodies only, their faces
+                                          that neither look up nor away from the eye,
+                                          blended at the opacity in bits TR_OPACITY_SHIFT.. */
+#define TR_OPACITY_SHIFT      8
 
 /* The renderer's binding of the world's manifolds (its own set; the world reaches them by
  * address): past the world's bindings, so the body arrays keep the world's numbers. */
@@ -35,6 +42,14 @@
 #define TR_CONTACT_CROSS_SHARE 0.012
 /* Normal line length: this share of the eye-target distance, so it scales with the view. */
 #define TR_CONTACT_NORMAL_SHARE 0.03
+/* The overlay is depth-tested against the scene (and writes depth, so see-through static
+ * bodies drawn later blend over it only where they are in front). A contact lies on the
+ * surfaces that touch, so each vertex is first moved towards the eye along its view ray
+ * (where it projects stays the same) by this share of its distance from the eye, about
+ * twice a cross arm: the cross of a contact on a visible surface shows whole, a contact
+ * behind anything thicker than that stays hidden (a normal may dip into the body it
+ * points into). */
+#define TR_CONTACT_LIFT_SHARE 0.025
 /* Colours in exact 8-bit steps (a test finds them in the image): points magenta, normals
  * yellow; no lit surface, the sky or the AABB lines come out in either. */
 #define TR_CONTACT_POINT_R 255
@@ -50,9 +65,10 @@ TR_STRUCT(tr_push) {
     TR_VEC4(eye);         /* xyz camera position, w far plane distance */
     TR_VEC4(target);      /* xyz point looked at, w speed that maps to full red */
     TR_VEC4(light);       /* xyz unit direction towards the light, w height of the default grid */
-    TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_*, w first manifold
-                             of the last step (contact overlay: its index in the manifold
-                             buffer, whose halves alternate by step parity) */
+    TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_* and opacity,
+                             w: hull draws, the shape slot drawn; contact overlay, the first
+                             manifold of the last step (its index in the manifold buffer,
+                             whose halves alternate by step parity) */
 };
 
 #endif

@@ -1,0 +1,392 @@
+/* Convex hull shapes: their meshes, built on the host from the public API.
+ *
+ * A hull body reads its shape slot from the world's body arrays (body_info.x), as every
+ * body draw does; the hull's geometry is not in the arrays the renderer binds, so each hull
+ * shape gets a mesh of its own here: tb_shape_get_hull_vertices gives the vertices in the
+ * body frame, and tr_hull_triangles closes them into outward triangles (flat shaded).
+ *
+ * The shapes come from tb_world_shape_ids (a shape's slot is its id's index1 - 1). The
+ * meshes are built again only when the shape slots, the live shape count or a known
+ * shape's validity changed, so a frame normally costs one tb_shape_is_valid per shape.
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render_internal.h"
+
+/* ---- convex hull of a point set, incremental ---------------------------------------- */
+
+typedef struct hull_face {
+    uint32_t v[3];      /* counter-clockwise seen from outside */
+    double n[3], d;     /* unit outward normal, dot(n, x) = d on the face */
+    int alive;
+    uint32_t seen;      /* the insertion that found it visible */
+} hull_face;
+
+typedef struct hull_build {
+    const double* p;    /* xyz per point */
+    uint32_t n;
+    hull_face* faces;
+    uint32_t count, capacity;
+    int32_t* owner;     /* n * n: face of directed edge a -> b, or -1 */
+    double eps;
+} hull_build;
+
+static void sub3(const double* a, const double* b, double out[3])
+{
+    for (int i = 0; i < 3; i++) out[i] = a[i] - b[i];
+}
+
+static void cross(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static double distance_to_face(const hull_build* h, const hull_face* f, uint32_t point)
+{
+    return dot(f->n, h->p + 3 * point) - f->d;
+}
+
+/* Adds face (a, b, c) and claims its three directed edges; 0 when out of memory. */
+static int add_face(hull_build* h, uint32_t a, uint32_t b, uint32_t c)
+{
+    if (h->count == h->capacity) {
+        uint32_t cap = h->capacity ? 2 * h->capacity : 64;
+        hull_face* grown = realloc(h->faces, cap * sizeof *grown);
+        if (!grown) return 0;
+        h->faces = grown;
+        h->capacity = cap;
+    }
+    hull_face* f = &h->faces[h->count];
+    f->v[0] = a; f->v[1] = b; f->v[2] = c;
+    double e1[3], e2[3];
+    sub3(h->p + 3 * b, h->p + 3 * a, e1);
+    sub3(h->p + 3 * c, h->p + 3 * a, e2);
+    cross(e1, e2, f->n);
+    double len = sqrt(dot(f->n, f->n));
+    for (int i = 0; i < 3; i++) f->n[i] = len > 0 ? f->n[i] / len : 0.0;
+    f->d = dot(f->n, h->p + 3 * a);
+    f->alive = 1;
+    f->seen = 0;
+    for (int i = 0; i < 3; i++) h->owner[f->v[i] * h->n + f->v[(i + 1) % 3]] = (int32_t)h->count;
+    h->count++;
+    return 1;
+}
+
+static uint32_t farthest(const hull_build* h, double (*measure)(const hull_build*, uint32_t,
+                                                               const uint32_t*),
+                         const uint32_t* from, double* best)
+{
+    uint32_t arg = 0;
+    *best = -1.0;
+    for (uint32_t i = 0; i < h->n; i++) {
+        double m = measure(h, i, from);
+        if (m > *best) { *best = m; arg = i; }
+    }
+    return arg;
+}
+
+static double from_point(const hull_build* h, uint32_t i, const uint32_t* s)
+{
+    double d[3];
+    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    return sqrt(dot(d, d));
+}
+
+static double from_line(const hull_build* h, uint32_t i, const uint32_t* s)
+{
+    double u[3], d[3], c[3];
+    sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
+    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    cross(u, d, c);
+    return sqrt(dot(c, c) / dot(u, u));
+}
+
+static double from_plane(const hull_build* h, uint32_t i, const uint32_t* s)
+{
+    double u[3], v[3], n[3], d[3];
+    sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
+    sub3(h->p + 3 * s[2], h->p + 3 * s[0], v);
+    cross(u, v, n);
+    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    return fabs(dot(n, d)) / sqrt(dot(n, n));
+}
+
+/* The first tetrahedron, its faces turned outwards; 0 when the points span no volume. */
+static int start(hull_build* h)
+{
+    uint32_t s[4] = { 0, 0, 0, 0 };
+    double extent;
+    for (uint32_t i = 1; i < h->n; i++)
+        if (h->p[3 * i] < h->p[3 * s[0]]) s[0] = i;
+    s[1] = farthest(h, from_point, s, &extent);
+    h->eps = 1e-7 * extent;
+    double away;
+    if (extent <= 0) return 0;
+    s[2] = farthest(h, from_line, s, &away);
+    if (away <= h->eps) return 0;
+    s[3] = farthest(h, from_plane, s, &away);
+    if (away <= h->eps) return 0;
+    static const uint32_t sides[4][3] = { { 0, 1, 2 }, { 0, 3, 1 }, { 1, 3, 2 }, { 0, 2, 3 } };
+    for (int k = 0; k < 4; k++) {
+        uint32_t a = s[sides[k][0]], b = s[sides[k][1]], c = s[sides[k][2]];
+        uint32_t other = s[6 - sides[k][0] - sides[k][1] - sides[k][2]];
+        double e1[3], e2[3], n[3], d[3];
+        sub3(h->p + 3 * b, h->p + 3 * a, e1);
+        sub3(h->p + 3 * c, h->p + 3 * a, e2);
+        cross(e1, e2, n);
+        sub3(h->p + 3 * other, h->p + 3 * a, d);
+        int ok = dot(n, d) < 0 ? add_face(h, a, b, c) : add_face(h, a, c, b);
+        if (!ok) return -1;
+    }
+    return 1;
+}
+
+/* Adds point p: the faces it sees go, and the horizon they leave is closed to p. */
+static int insert(hull_build* h, uint32_t p, uint32_t round)
+{
+    uint32_t visible = 0, alive_before = h->count;
+    for (uint32_t f = 0; f < alive_before; f++) {
+        hull_face* face = &h->faces[f];
+        if (face->alive && distance_to_face(h, face, p) > h->eps) {
+            face->seen = round;
+            visible++;
+        }
+    }
+    if (!visible) return 1;
+    /* Horizon: edges of visible faces whose neighbour across is not visible. */
+    uint32_t* horizon = malloc(2 * 3 * (size_t)visible * sizeof *horizon);
+    if (!horizon) return 0;
+    uint32_t edges = 0;
+    for (uint32_t f = 0; f < alive_before; f++) {
+        hull_face* face = &h->faces[f];
+        if (!face->alive || face->seen != round) continue;
+        for (int i = 0; i < 3; i++) {
+            uint32_t a = face->v[i], b = face->v[(i + 1) % 3];
+            int32_t across = h->owner[b * h->n + a];
+            if (across < 0 || h->faces[across].seen != round) {
+                horizon[2 * edges] = a;
+                horizon[2 * edges + 1] = b;
+                edges++;
+            }
+        }
+    }
+    for (uint32_t f = 0; f < alive_before; f++) {
+        hull_face* face = &h->faces[f];
+        if (!face->alive || face->seen != round) continue;
+        face->alive = 0;
+        for (int i = 0; i < 3; i++) h->owner[face->v[i] * h->n + face->v[(i + 1) % 3]] = -1;
+    }
+    int ok = 1;
+    for (uint32_t e = 0; e < edges && ok; e++) ok = add_face(h, horizon[2 * e], horizon[2 * e + 1], p);
+    free(horizon);
+    return ok;
+}
+
+uint32_t tr_hull_triangles(const tb_vec3* points, uint32_t count, uint32_t** out)
+{
+    *out = NULL;
+    if (count < 4) return 0;
+    hull_build h = { 0 };
+    double* p = malloc(3 * (size_t)count * sizeof *p);
+    h.owner = malloc((size_t)count * count * sizeof *h.owner);
+    uint32_t triangles = 0;
+    if (p && h.owner) {
+        for (uint32_t i = 0; i < count; i++) {
+            p[3 * i] = points[i].x; p[3 * i + 1] = points[i].y; p[3 * i + 2] = points[i].z;
+        }
+        h.p = p;
+        h.n = count;
+        for (size_t i = 0; i < (size_t)count * count; i++) h.owner[i] = -1;
+        int ok = start(&h) == 1;
+        for (uint32_t i = 0; ok && i < count; i++) ok = insert(&h, i, i + 1);
+        uint32_t* tris = ok ? malloc(3 * (size_t)h.count * sizeof *tris) : NULL;
+        for (uint32_t f = 0; tris && f < h.count; f++) {
+            if (!h.faces[f].alive) continue;
+            memcpy(tris + 3 * triangles, h.faces[f].v, sizeof h.faces[f].v);
+            triangles++;
+        }
+        *out = tris;
+        if (!tris) triangles = 0;
+    }
+    free(p);
+    free(h.owner);
+    free(h.faces);
+    return triangles;
+}
+
+/* ---- the renderer's hull meshes ----------------------------------------------------- */
+
+typedef struct hull_mesh {
+    uint32_t slot;
+    tr_vertex* vertices;
+    uint32_t vertex_count;
+} hull_mesh;
+
+/* One flat-shaded mesh for the hull `id`: three vertices per triangle, the triangle's
+ * normal on each. */
+static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, hull_mesh* out)
+{
+    uint32_t count = 0;
+    tb_result res = tb_shape_get_hull_vertices(r->world, id, NULL, 0, &count);
+    if (res) return tr_fail(r, res, "tb_shape_get_hull_vertices: %s",
+                            tb_world_last_error(r->world));
+    tb_vec3* points = malloc((count ? count : 1) * sizeof *points);
+    if (!points) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a hull");
+    res = tb_shape_get_hull_vertices(r->world, id, points, count, &count);
+    if (res) {
+        free(points);
+        return tr_fail(r, res, "tb_shape_get_hull_vertices: %s", tb_world_last_error(r->world));
+    }
+    uint32_t* tris = NULL;
+    uint32_t n = tr_hull_triangles(points, count, &tris);
+    out->vertices = n ? malloc(3 * (size_t)n * sizeof *out->vertices) : NULL;
+    out->vertex_count = out->vertices ? 3 * n : 0;
+    for (uint32_t t = 0; t < n && out->vertices; t++) {
+        const tb_vec3* c[3] = { &points[tris[3 * t]], &points[tris[3 * t + 1]],
+                                &points[tris[3 * t + 2]] };
+        double e1[3] = { c[1]->x - c[0]->x, c[1]->y - c[0]->y, c[1]->z - c[0]->z };
+        double e2[3] = { c[2]->x - c[0]->x, c[2]->y - c[0]->y, c[2]->z - c[0]->z };
+        double nrm[3];
+        cross(e1, e2, nrm);
+        double len = sqrt(dot(nrm, nrm));
+        for (int k = 0; k < 3; k++) {
+            tr_vertex* v = &out->vertices[3 * t + k];
+            v->position[0] = c[k]->x; v->position[1] = c[k]->y; v->position[2] = c[k]->z;
+            for (int i = 0; i < 3; i++) v->normal[i] = len > 0 ? (float)(nrm[i] / len) : 0.0f;
+        }
+    }
+    free(tris);
+    free(points);
+    if (n && !out->vertices)
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a hull mesh");
+    return TB_OK;
+}
+
+/* Whether the shapes the last scan saw are still the world's. */
+static int scan_current(tr_renderer* r, uint32_t slots, uint32_t live)
+{
+    if (!r->hulls_scanned || slots != r->scan_slots || live != r->scan_live) return 0;
+    for (uint32_t s = 0; s < slots; s++)
+        if (r->shape_ids[s].index1 && !tb_shape_is_valid(r->world, r->shape_ids[s])) return 0;
+    return 1;
+}
+
+static tb_result grow_slot_table(tr_renderer* r, uint32_t slots)
+{
+    if (slots <= r->shape_capacity) return TB_OK;
+    tb_shape_id* ids = realloc(r->shape_ids, slots * sizeof *ids);
+    if (!ids) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for %u shape slots", slots);
+    r->shape_ids = ids;
+    r->shape_capacity = slots;
+    return TB_OK;
+}
+
+/* New vertex and index buffers: the unit meshes as they are, then the hull meshes (three
+ * vertices and indices 0, 1, 2, ... per triangle); one draw per hull shape. The old buffers
+ * go (no frame is in flight: every frame waits for its fence). */
+static tb_result upload(tr_renderer* r, hull_mesh* meshes, uint32_t count)
+{
+    const uint32_t unit_vertices = TR_SPHERE_VERTICES + TR_CUBE_VERTICES;
+    const uint32_t unit_indices = TR_SPHERE_INDICES + TR_CUBE_INDICES;
+    uint32_t total = 0;
+    for (uint32_t i = 0; i < count; i++) total += meshes[i].vertex_count;
+    free(r->hull_draws);
+    r->hull_draws = NULL;
+    r->hull_draw_count = 0;
+    r->hull_draws = malloc((count ? count : 1) * sizeof *r->hull_draws);
+    if (!r->hull_draws) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for hulls");
+    tr_buffer vertices = { 0 }, indices = { 0 };
+    tb_result res = tr_host_buffer(r, (VkDeviceSize)(unit_vertices + total) * sizeof(tr_vertex),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &vertices);
+    if (!res) res = tr_host_buffer(r, (VkDeviceSize)(unit_indices + total) * sizeof(uint32_t),
+                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &indices);
+    if (res) {
+        tr_buffer_destroy(r, &vertices);
+        tr_buffer_destroy(r, &indices);
+        return res;
+    }
+    tr_vertex* v = vertices.mapped;
+    uint32_t* idx = indices.mapped;
+    memcpy(v, r->vertices.mapped, unit_vertices * sizeof *v);
+    memcpy(idx, r->indices.mapped, unit_indices * sizeof *idx);
+    for (uint32_t i = 0; i < total; i++) idx[unit_indices + i] = i;
+    uint32_t first = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        if (!meshes[i].vertex_count) continue;
+        memcpy(v + unit_vertices + first, meshes[i].vertices, meshes[i].vertex_count * sizeof *v);
+        r->hull_draws[r->hull_draw_count++] = (tr_hull_draw){
+            meshes[i].slot, unit_indices + first, meshes[i].vertex_count,
+            (int32_t)unit_vertices };
+        first += meshes[i].vertex_count;
+    }
+    tr_buffer_destroy(r, &r->vertices);
+    tr_buffer_destroy(r, &r->indices);
+    r->vertices = vertices;
+    r->indices = indices;
+    return TB_OK;
+}
+
+static tb_result rescan(tr_renderer* r, uint32_t slots, uint32_t live)
+{
+    tb_result res = grow_slot_table(r, slots);
+    if (res) return res;
+    memset(r->shape_ids, 0, slots * sizeof *r->shape_ids);
+    tb_shape_id* live_ids = malloc((live ? live : 1) * sizeof *live_ids);
+    hull_mesh* meshes = calloc(live ? live : 1, sizeof *meshes);
+    if (!live_ids || !meshes) {
+        free(live_ids);
+        free(meshes);
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for hulls");
+    }
+    uint32_t found = tb_world_shape_ids(r->world, live_ids, live), count = 0;
+    for (uint32_t i = 0; i < found && !res; i++) {
+        uint32_t s = live_ids[i].index1 - 1;
+        if (s >= slots) continue;   /* made after the bodies' arrays were read: next frame */
+        r->shape_ids[s] = live_ids[i];
+        tb_shape_type type;
+        if (tb_shape_get_type(r->world, live_ids[i], &type) != TB_OK || type != TB_SHAPE_HULL)
+            continue;
+        meshes[count].slot = s;
+        res = hull_mesh_of(r, live_ids[i], &meshes[count]);
+        count++;
+    }
+    if (!res) res = upload(r, meshes, count);
+    for (uint32_t i = 0; i < count; i++) free(meshes[i].vertices);
+    free(meshes);
+    free(live_ids);
+    if (res) return res;
+    r->hulls_scanned = 1;
+    r->scan_slots = slots;
+    r->scan_live = live;
+    return TB_OK;
+}
+
+tb_result tr_hulls_update(tr_renderer* r, const tb_vulkan_bodies* bodies)
+{
+    tb_world_stats stats;
+    tb_result res = tb_world_get_stats(r->world, &stats);
+    if (res) return tr_fail(r, res, "tb_world_get_stats: %s", tb_world_last_error(r->world));
+    uint32_t slots = bodies->shape_slots;
+    if (scan_current(r, slots, stats.shape_count)) return TB_OK;
+    return rescan(r, slots, stats.shape_count);
+}
+
+void tr_hulls_destroy(tr_renderer* r)
+{
+    free(r->hull_draws);
+    free(r->shape_ids);
+    r->hull_draws = NULL;
+    r->hull_draw_count = 0;
+    r->shape_ids = NULL;
+    r->shape_capacity = 0;
+    r->hulls_scanned = 0;
+}
