@@ -454,6 +454,18 @@ TB_STRUCT(tb_gpu_constraint) {
     tb_gpu_constraint_point p[TB_MAX_MANIFOLD_POINTS];
 };
 
+/* A node of a triangle mesh's bounding volume hierarchy (src/geom/bvh.h), in depth-first
+ * order: an inner node's first child follows it, and its skip index is the first node after
+ * its subtree, so a walk needs no stack. The box is quantized to 16 bits per axis over the
+ * mesh's box (q = fraction * 65535), rounded outward. */
+#define TB_BVH_LEAF          TB_U(0x80000000) /* in tb_gpu_bvh_node.q.w: a leaf */
+#define TB_BVH_MAX_TRIANGLES TB_U(16777216)   /* triangles in one mesh */
+TB_STRUCT(tb_gpu_bvh_node) {
+    TB_UVEC4 q;               /* x min.x | min.y << 16, y min.z | max.x << 16,
+                                 z max.y | max.z << 16, w a leaf: TB_BVH_LEAF | its triangle;
+                                 an inner node: its skip index */
+};
+
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */

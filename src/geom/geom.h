@@ -3,6 +3,8 @@
  *
  *   hull.h        convex hulls: quickhull from a point cloud, faces, edges, mass properties
  *                 in the principal frame (quickhull.c, hull.c, hull_mass.c)
+ *   bvh.h         a triangle mesh's bounding volume hierarchy: median splits, depth-first
+ *                 nodes with skip indices, boxes quantized to 16 bits (bvh.c)
  *
  * It reads the caller's points and writes hulls the caller owns; errors come back as a
  * sentence in the caller's buffer. The narrowphase's hull table packs these hulls for the
@@ -11,6 +13,7 @@
 #ifndef TB_GEOM_GEOM_H
 #define TB_GEOM_GEOM_H
 
+#include "geom/bvh.h"
 #include "geom/hull.h"
 
 #endif
