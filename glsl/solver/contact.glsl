@@ -134,9 +134,10 @@ void solve_contact(uint p, bool relax)
 // leaves at e times that speed.
 void restitution_contact(uint p)
 {
-    contact_view v = contact_load(p);
-    float e = v.c.tangent2.w;
+    // Most contacts do not bounce: their material says so before anything else is read.
+    float e = constraints[p].tangent2.w;
     if (e == 0.0) return;
+    contact_view v = contact_load(p);
     for (uint k = 0u; k < v.count; k++) {
         float before = min(v.c.p[k].mass.z, v.c.p[k].mass.w);
         vec4 impulse = manifolds[p].impulse[k];
