@@ -1,8 +1,9 @@
-/* The mesh BVH on the host (src/geom/bvh.c): its structure (every triangle in one leaf,
- * skip indices that end each subtree, boxes that contain what lies below them), the
- * stackless walk against brute force on random soups and a flat terrain grid of a million
- * triangles, the same tree on every build, and bad input refused with a sentence. No GPU
- * is used. */
+/* The mesh BVH (src/geom/bvh.c): its structure (every triangle in one leaf, skip indices
+ * that end each subtree, boxes that contain what lies below them), the stackless walk
+ * against brute force on random soups and a flat terrain grid of a million triangles, the
+ * same tree on every build, and bad input refused with a sentence, on the host; then the
+ * same walk on the GPU (glsl/midphase/bvh.glsl, driven by midphase/bvh_query on lavapipe)
+ * against the host's walk and brute force. */
 #include "harness.h"
 
 #include <math.h>
@@ -10,6 +11,8 @@
 #include <string.h>
 
 #include "geom/bvh.h"
+#include "gpu/prims.h"
+#include "world/world.h"
 
 /* ---- meshes ----------------------------------------------------------------------------- */
 
@@ -274,6 +277,135 @@ static void test_same_tree_every_build(void** state)
     mesh_free(&m);
 }
 
+/* ---- the walk on the GPU ---------------------------------------------------------------- */
+
+#define GPU_QUERIES 512u
+#define GPU_KEEP 256u
+
+typedef struct host_list {
+    uint32_t* found;
+    uint32_t count;
+} host_list;
+
+static void collect(void* user, uint32_t t)
+{
+    host_list* l = user;
+    l->found[l->count++] = t;
+}
+
+static tb_buffer storage(tb_world* w, VkDeviceSize bytes)
+{
+    tb_buffer b;
+    th_assert_ok(tb_buffer_create(&w->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, 1, &b));
+    return b;
+}
+
+/* 512 random boxes (some beside the mesh, some large) walked by midphase/bvh_query: each
+ * finds every triangle the host's walk finds (the GPU rounds its query one step wider, so it
+ * may find a little more, never anything far), nothing twice, and looks at about as many
+ * nodes. */
+static void test_gpu_walk_matches_host(void** state)
+{
+    (void)state;
+    mesh m = random_soup(4000, 1.5f, 21);
+    tb_bvh bvh = build_or_fail(&m);
+    tb_world* w = th_world_create(NULL);
+    VkPipeline pipeline;
+    th_assert_ok(tb_pipeline_create(&w->pipelines, "midphase/bvh_query", 64, &pipeline));
+    tb_buffer nodes = storage(w, bvh.node_count * sizeof *bvh.nodes);
+    tb_buffer queries = storage(w, 2 * GPU_QUERIES * sizeof(tb_gpu_vec4));
+    tb_buffer results = storage(w, GPU_QUERIES * (GPU_KEEP + 2) * sizeof(uint32_t));
+    memcpy(nodes.mapped, bvh.nodes, bvh.node_count * sizeof *bvh.nodes);
+    tb_gpu_vec4* box = queries.mapped;
+    th_rng rng = th_rng_seed(22);
+    for (uint32_t q = 0; q < GPU_QUERIES; q++) {
+        float half = th_rng_range(&rng, 0, q % 16 == 0 ? 16.0f : 6.0f), c[3];
+        for (int a = 0; a < 3; a++) c[a] = th_rng_range(&rng, -70, 70);
+        box[2 * q] = (tb_gpu_vec4){ c[0] - half, c[1] - half, c[2] - half, 0 };
+        box[2 * q + 1] = (tb_gpu_vec4){ c[0] + half, c[1] + half, c[2] + half, 0 };
+    }
+    tb_gpu_bvh_query_push push;
+    memset(&push, 0, sizeof push);
+    push.arrays = tb_gpu_addresses(nodes.address, queries.address);
+    push.results = tb_gpu_addresses(results.address, 0);
+    push.results.z = GPU_KEEP;
+    push.results.w = GPU_QUERIES;
+    uint32_t node_count = bvh.node_count;
+    float count_bits;
+    memcpy(&count_bits, &node_count, sizeof count_bits);
+    for (int a = 0; a < 3; a++) {
+        double extent = (double)bvh.hi[a] - bvh.lo[a];
+        (&push.mesh_lo.x)[a] = bvh.lo[a];
+        (&push.mesh_hi.x)[a] = bvh.hi[a];
+        (&push.scale.x)[a] = extent > 0 ? (float)(65535.0 / extent) : 0.0f;
+    }
+    push.mesh_lo.w = count_bits;
+    tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_FIXED,
+                     .groups = { (GPU_QUERIES + 63) / 64, 1, 1 }, .push_size = sizeof push };
+    memcpy(pass.push, &push, sizeof push);
+    VkCommandBuffer cb;
+    th_assert_ok(tb_gpu_command_buffer(&w->gpu, &cb));
+    VkCommandBufferBeginInfo begin = { .sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO };
+    assert_int_equal(vkBeginCommandBuffer(cb, &begin), VK_SUCCESS);
+    tb_passes_record(cb, w->pipelines.layout, &pass, 1, w->params_buffer.buffer);
+    VkMemoryBarrier to_host = { .sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER,
+                                .srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT,
+                                .dstAccessMask = VK_ACCESS_HOST_READ_BIT };
+    vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0,
+                         1, &to_host, 0, NULL, 0, NULL);
+    assert_int_equal(vkEndCommandBuffer(cb), VK_SUCCESS);
+    th_assert_ok(tb_gpu_submit_wait(&w->gpu, &cb, 1));
+
+    const uint32_t* got = results.mapped;
+    host_list l = { malloc(m.triangle_count * sizeof(uint32_t)), 0 };
+    uint8_t* on_gpu = calloc(m.triangle_count, 1);
+    assert_non_null(l.found);
+    assert_non_null(on_gpu);
+    uint32_t total = 0, empty = 0;
+    for (uint32_t q = 0; q < GPU_QUERIES; q++) {
+        const float lo[3] = { box[2 * q].x, box[2 * q].y, box[2 * q].z };
+        const float hi[3] = { box[2 * q + 1].x, box[2 * q + 1].y, box[2 * q + 1].z };
+        l.count = 0;
+        uint32_t looked = tb_bvh_query(&bvh, lo, hi, collect, &l);
+        const uint32_t* row = got + q * (GPU_KEEP + 2);
+        uint32_t n = row[0];
+        assert_true(n >= l.count && n <= GPU_KEEP);
+        /* The same walk: a step wider may look at a few more nodes, never many. */
+        if (row[1] < looked || row[1] > looked + looked / 4 + 8)
+            fail_msg("query %u: the GPU looked at %u nodes, the host at %u", q, row[1], looked);
+        empty += n == 0;
+        total += n;
+        memset(on_gpu, 0, m.triangle_count);
+        for (uint32_t k = 0; k < n; k++) {
+            assert_true(row[2 + k] < m.triangle_count);
+            assert_int_equal(on_gpu[row[2 + k]]++, 0);
+            float tlo[3], thi[3], wide_lo[3], wide_hi[3];
+            triangle_box(&m, row[2 + k], tlo, thi);
+            for (int a = 0; a < 3; a++) {
+                float step = (bvh.hi[a] - bvh.lo[a]) / 65535.0f;
+                wide_lo[a] = lo[a] - 4 * step;
+                wide_hi[a] = hi[a] + 4 * step;
+            }
+            if (!box_overlap(tlo, thi, wide_lo, wide_hi))
+                fail_msg("query %u: the GPU found triangle %u far away", q, row[2 + k]);
+        }
+        for (uint32_t k = 0; k < l.count; k++)
+            if (!on_gpu[l.found[k]]) fail_msg("query %u: the GPU missed triangle %u", q, l.found[k]);
+    }
+    print_message("GPU walk: %u triangles found by %u queries, %u found none\n", total,
+                  GPU_QUERIES, empty);
+    assert_true(total > GPU_QUERIES && empty > 0);
+    free(l.found);
+    free(on_gpu);
+    tb_buffer_destroy(&w->memory, &nodes);
+    tb_buffer_destroy(&w->memory, &queries);
+    tb_buffer_destroy(&w->memory, &results);
+    tb_pipeline_destroy(&w->pipelines, pipeline);
+    th_world_destroy(w);
+    tb_bvh_free(&bvh);
+    mesh_free(&m);
+}
+
 /* ---- bad input -------------------------------------------------------------------------- */
 
 static void expect_refused(const float* xyz, uint32_t vertices, const uint32_t* indices,
@@ -314,6 +446,7 @@ int main(void)
         cmocka_unit_test(test_million_triangle_terrain),
         cmocka_unit_test(test_same_tree_every_build),
         cmocka_unit_test(test_bad_input_refused),
+        cmocka_unit_test(test_gpu_walk_matches_host),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -44,6 +44,7 @@ static void test_shape_layout(void** state)
     (void)state;
     assert_int_equal(sizeof(tb_gpu_shape), 96);
     assert_int_equal(sizeof(tb_gpu_bvh_node), 16);
+    assert_true(sizeof(tb_gpu_bvh_query_push) <= 128);
     assert_int_equal(sizeof(tb_gpu_solver_body), 96);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_center), 0);
     assert_int_equal(offsetof(tb_gpu_shape, aabb_half), 16);

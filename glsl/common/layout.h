@@ -466,6 +466,18 @@ TB_STRUCT(tb_gpu_bvh_node) {
                                  an inner node: its skip index */
 };
 
+/* midphase/bvh_query: each query box walks a mesh's BVH (the walk the mesh midphase does). */
+TB_STRUCT(tb_gpu_bvh_query_push) {
+    TB_UVEC4 arrays;          /* xy address of the nodes, zw of the queries (two vec4 each:
+                                 low corner, high corner) */
+    TB_UVEC4 results;         /* xy address of the results (per query: the count, the nodes
+                                 looked at, then up to z triangles), z most kept per query,
+                                 w query count */
+    TB_VEC4 mesh_lo;          /* xyz the mesh's box, low corner; w the node count (uint bits) */
+    TB_VEC4 mesh_hi;          /* xyz its high corner */
+    TB_VEC4 scale;            /* xyz quantization steps per metre (65535 / extent, 0 if flat) */
+};
+
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */
