@@ -187,3 +187,13 @@ def test_stats_device_log_and_version(make_world):
     assert tumble.version()[0] == tumble.HEADER_VERSION[0]
     assert tumble.__version__ == "%d.%d.%d" % tumble.HEADER_VERSION
     assert set(tumble.BROADPHASES) == {"default", "grid", "sap", "lbvh", "isap"}
+
+
+def test_shape_ids_list_live_shapes_in_slot_order(make_world):
+    world = make_world()
+    a, b, c = world.sphere(1.0), world.box((1, 1, 1)), world.sphere(2.0)
+    world.destroy(b)
+    assert world.shape_ids() == [a, c]
+    again = world.box((2, 2, 2))
+    assert world.shape_ids() == [a, again, c]
+    assert not world.is_valid(b) and world.is_valid(again)

@@ -633,6 +633,15 @@ class World:
             n = lib.tb_world_body_ids(w, ffi.from_buffer("tb_body_id[]", ids), len(ids))
         return Bodies(ids[:n])
 
+    def shape_ids(self):
+        """Every live shape of the world, in slot order, as a list of Shape."""
+        w = self._handle()
+        stats = ffi.new("tb_world_stats*")
+        self._check(lib.tb_world_get_stats(w, stats))
+        ids = ffi.new("tb_shape_id[]", max(stats.shape_count, 1))
+        n = lib.tb_world_shape_ids(w, ids, stats.shape_count)
+        return [Shape(ids[i].index1, ids[i].world, ids[i].generation) for i in range(n)]
+
     def body_type(self, body):
         """"static" or "dynamic"."""
         out = ffi.new("tb_body_type*")
