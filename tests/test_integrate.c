@@ -340,11 +340,11 @@ static void top_axis(tb_world* w, const top* t, double axis[3])
  * the root of I1 W^2 cos(tilt) - I3 s W + m g l = 0 (I1 about the tip, I3 about the axis,
  * s the spin, l the tip-to-centre distance), within 5 % over 2 s (lavapipe: 1.21 rad/s
  * against 1.22), and the tilt stays within 8 degrees. It creeps by 5 in 2 s at 60 Hz, the
- * energy growing 0.35 %: an error of what is computed once a step (the contact's arms and the
- * world inverse inertia), since at the same substep rate it shrinks with the step (24
- * substeps at 60 Hz: 3.7 degrees; 6 at 240 Hz: 2.0, of which the top's own nutation is
- * most). Without the gyroscopic term the spin stays fixed in the world and the top topples
- * within a second. */
+ * energy growing 0.35 %: an error of what is computed once a step (such as the contact, its
+ * arms, the world inverse inertia), since at the same substep rate it shrinks with the step
+ * (24 substeps at 60 Hz: 3.7 degrees; 6 at 240 Hz: 2.0, most of it the top's own nutation).
+ * Without the gyroscopic term the spin stays fixed in the world and the top topples within
+ * a second. */
 static void test_spinning_top_precesses(void** state)
 {
     (void)state;
