@@ -75,18 +75,6 @@ static void normalize3(double v[3])
     for (int i = 0; i < 3; i++) v[i] /= l;
 }
 
-static void cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* Frame the scene's bounding sphere from a fixed direction, in both fields of view. */
 static void automatic_camera(const tr_options* o, const tr_scene* s, tr_view* v)
 {
@@ -124,14 +112,14 @@ static void build_matrix(const tr_view* v, double aspect, float out[16])
     const double up[3] = { c->up.x, c->up.y, c->up.z };
     double s[3], u[3];
     normalize3(f);
-    cross3(f, up, s);
+    tr_cross3(f, up, s);
     normalize3(s);
-    cross3(s, f, u);
+    tr_cross3(s, f, u);
     /* Rows of V. */
     const double view[4][4] = {
-        { s[0], s[1], s[2], -dot3(s, eye) },
-        { u[0], u[1], u[2], -dot3(u, eye) },
-        { -f[0], -f[1], -f[2], dot3(f, eye) },
+        { s[0], s[1], s[2], -tr_dot3(s, eye) },
+        { u[0], u[1], u[2], -tr_dot3(u, eye) },
+        { -f[0], -f[1], -f[2], tr_dot3(f, eye) },
         { 0, 0, 0, 1 },
     };
     double t = 1.0 / tan(0.5 * c->fov_y_degrees * DEG), n = v->near_plane, fa = v->far_plane;

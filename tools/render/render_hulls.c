@@ -33,26 +33,9 @@ typedef struct hull_build {
     double eps;
 } hull_build;
 
-static void sub3(const double* a, const double* b, double out[3])
-{
-    for (int i = 0; i < 3; i++) out[i] = a[i] - b[i];
-}
-
-static void cross(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-static double dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 static double distance_to_face(const hull_build* h, const hull_face* f, uint32_t point)
 {
-    return dot(f->n, h->p + 3 * point) - f->d;
+    return tr_dot3(f->n, h->p + 3 * point) - f->d;
 }
 
 /* Adds face (a, b, c) and claims its three directed edges; 0 when out of memory. */
@@ -68,12 +51,12 @@ static int add_face(hull_build* h, uint32_t a, uint32_t b, uint32_t c)
     hull_face* f = &h->faces[h->count];
     f->v[0] = a; f->v[1] = b; f->v[2] = c;
     double e1[3], e2[3];
-    sub3(h->p + 3 * b, h->p + 3 * a, e1);
-    sub3(h->p + 3 * c, h->p + 3 * a, e2);
-    cross(e1, e2, f->n);
-    double len = sqrt(dot(f->n, f->n));
+    tr_sub3(h->p + 3 * b, h->p + 3 * a, e1);
+    tr_sub3(h->p + 3 * c, h->p + 3 * a, e2);
+    tr_cross3(e1, e2, f->n);
+    double len = sqrt(tr_dot3(f->n, f->n));
     for (int i = 0; i < 3; i++) f->n[i] = len > 0 ? f->n[i] / len : 0.0;
-    f->d = dot(f->n, h->p + 3 * a);
+    f->d = tr_dot3(f->n, h->p + 3 * a);
     f->alive = 1;
     f->seen = 0;
     for (int i = 0; i < 3; i++) h->owner[f->v[i] * h->n + f->v[(i + 1) % 3]] = (int32_t)h->count;
@@ -97,27 +80,27 @@ static uint32_t farthest(const hull_build* h, double (*measure)(const hull_build
 static double from_point(const hull_build* h, uint32_t i, const uint32_t* s)
 {
     double d[3];
-    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
-    return sqrt(dot(d, d));
+    tr_sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    return sqrt(tr_dot3(d, d));
 }
 
 static double from_line(const hull_build* h, uint32_t i, const uint32_t* s)
 {
     double u[3], d[3], c[3];
-    sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
-    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
-    cross(u, d, c);
-    return sqrt(dot(c, c) / dot(u, u));
+    tr_sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
+    tr_sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    tr_cross3(u, d, c);
+    return sqrt(tr_dot3(c, c) / tr_dot3(u, u));
 }
 
 static double from_plane(const hull_build* h, uint32_t i, const uint32_t* s)
 {
     double u[3], v[3], n[3], d[3];
-    sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
-    sub3(h->p + 3 * s[2], h->p + 3 * s[0], v);
-    cross(u, v, n);
-    sub3(h->p + 3 * i, h->p + 3 * s[0], d);
-    return fabs(dot(n, d)) / sqrt(dot(n, n));
+    tr_sub3(h->p + 3 * s[1], h->p + 3 * s[0], u);
+    tr_sub3(h->p + 3 * s[2], h->p + 3 * s[0], v);
+    tr_cross3(u, v, n);
+    tr_sub3(h->p + 3 * i, h->p + 3 * s[0], d);
+    return fabs(tr_dot3(n, d)) / sqrt(tr_dot3(n, n));
 }
 
 /* The first tetrahedron, its faces turned outwards; 0 when the points span no volume. */
@@ -140,11 +123,11 @@ static int start(hull_build* h)
         uint32_t a = s[sides[k][0]], b = s[sides[k][1]], c = s[sides[k][2]];
         uint32_t other = s[6 - sides[k][0] - sides[k][1] - sides[k][2]];
         double e1[3], e2[3], n[3], d[3];
-        sub3(h->p + 3 * b, h->p + 3 * a, e1);
-        sub3(h->p + 3 * c, h->p + 3 * a, e2);
-        cross(e1, e2, n);
-        sub3(h->p + 3 * other, h->p + 3 * a, d);
-        int ok = dot(n, d) < 0 ? add_face(h, a, b, c) : add_face(h, a, c, b);
+        tr_sub3(h->p + 3 * b, h->p + 3 * a, e1);
+        tr_sub3(h->p + 3 * c, h->p + 3 * a, e2);
+        tr_cross3(e1, e2, n);
+        tr_sub3(h->p + 3 * other, h->p + 3 * a, d);
+        int ok = tr_dot3(n, d) < 0 ? add_face(h, a, b, c) : add_face(h, a, c, b);
         if (!ok) return -1;
     }
     return 1;
@@ -256,8 +239,8 @@ static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, hull_mesh* out)
         double e1[3] = { c[1]->x - c[0]->x, c[1]->y - c[0]->y, c[1]->z - c[0]->z };
         double e2[3] = { c[2]->x - c[0]->x, c[2]->y - c[0]->y, c[2]->z - c[0]->z };
         double nrm[3];
-        cross(e1, e2, nrm);
-        double len = sqrt(dot(nrm, nrm));
+        tr_cross3(e1, e2, nrm);
+        double len = sqrt(tr_dot3(nrm, nrm));
         for (int k = 0; k < 3; k++) {
             tr_vertex* v = &out->vertices[3 * t + k];
             v->position[0] = c[k]->x; v->position[1] = c[k]->y; v->position[2] = c[k]->z;

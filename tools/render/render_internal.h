@@ -14,6 +14,24 @@
 
 #include "render_layout.h" /* tr_push and TR_FLAG_*, shared with the shaders */
 
+/* Double-precision 3-vectors for the host-side geometry (camera framing, hull meshes). */
+static inline void tr_sub3(const double* a, const double* b, double out[3])
+{
+    for (int i = 0; i < 3; i++) out[i] = a[i] - b[i];
+}
+
+static inline void tr_cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static inline double tr_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 typedef struct tr_image {
     VkImage image;
     VkDeviceMemory memory;
