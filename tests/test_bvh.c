@@ -282,17 +282,6 @@ static void test_same_tree_every_build(void** state)
 #define GPU_QUERIES 512u
 #define GPU_KEEP 256u
 
-typedef struct host_list {
-    uint32_t* found;
-    uint32_t count;
-} host_list;
-
-static void collect(void* user, uint32_t t)
-{
-    host_list* l = user;
-    l->found[l->count++] = t;
-}
-
 static tb_buffer storage(tb_world* w, VkDeviceSize bytes)
 {
     tb_buffer b;
@@ -333,11 +322,12 @@ static void test_gpu_walk_matches_host(void** state)
     uint32_t node_count = bvh.node_count;
     float count_bits;
     memcpy(&count_bits, &node_count, sizeof count_bits);
+    double scale[3];
+    tb_bvh_steps_per_metre(&bvh, scale);
     for (int a = 0; a < 3; a++) {
-        double extent = (double)bvh.hi[a] - bvh.lo[a];
         (&push.mesh_lo.x)[a] = bvh.lo[a];
         (&push.mesh_hi.x)[a] = bvh.hi[a];
-        (&push.scale.x)[a] = extent > 0 ? (float)(65535.0 / extent) : 0.0f;
+        (&push.scale.x)[a] = (float)scale[a];
     }
     push.mesh_lo.w = count_bits;
     tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_FIXED,
@@ -357,19 +347,20 @@ static void test_gpu_walk_matches_host(void** state)
     th_assert_ok(tb_gpu_submit_wait(&w->gpu, &cb, 1));
 
     const uint32_t* got = results.mapped;
-    host_list l = { malloc(m.triangle_count * sizeof(uint32_t)), 0 };
+    found host = { malloc(m.triangle_count), 0 };
     uint8_t* on_gpu = calloc(m.triangle_count, 1);
-    assert_non_null(l.found);
+    assert_non_null(host.hit);
     assert_non_null(on_gpu);
     uint32_t total = 0, empty = 0;
     for (uint32_t q = 0; q < GPU_QUERIES; q++) {
         const float lo[3] = { box[2 * q].x, box[2 * q].y, box[2 * q].z };
         const float hi[3] = { box[2 * q + 1].x, box[2 * q + 1].y, box[2 * q + 1].z };
-        l.count = 0;
-        uint32_t looked = tb_bvh_query(&bvh, lo, hi, collect, &l);
+        memset(host.hit, 0, m.triangle_count);
+        host.count = 0;
+        uint32_t looked = tb_bvh_query(&bvh, lo, hi, mark, &host);
         const uint32_t* row = got + q * (GPU_KEEP + 2);
         uint32_t n = row[0];
-        assert_true(n >= l.count && n <= GPU_KEEP);
+        assert_true(n >= host.count && n <= GPU_KEEP);
         /* The same walk: a step wider may look at a few more nodes, never many. */
         if (row[1] < looked || row[1] > looked + looked / 4 + 8)
             fail_msg("query %u: the GPU looked at %u nodes, the host at %u", q, row[1], looked);
@@ -389,13 +380,13 @@ static void test_gpu_walk_matches_host(void** state)
             if (!box_overlap(tlo, thi, wide_lo, wide_hi))
                 fail_msg("query %u: the GPU found triangle %u far away", q, row[2 + k]);
         }
-        for (uint32_t k = 0; k < l.count; k++)
-            if (!on_gpu[l.found[k]]) fail_msg("query %u: the GPU missed triangle %u", q, l.found[k]);
+        for (uint32_t t = 0; t < m.triangle_count; t++)
+            if (host.hit[t] && !on_gpu[t]) fail_msg("query %u: the GPU missed triangle %u", q, t);
     }
     print_message("GPU walk: %u triangles found by %u queries, %u found none\n", total,
                   GPU_QUERIES, empty);
     assert_true(total > GPU_QUERIES && empty > 0);
-    free(l.found);
+    free(host.hit);
     free(on_gpu);
     tb_buffer_destroy(&w->memory, &nodes);
     tb_buffer_destroy(&w->memory, &queries);

@@ -32,8 +32,7 @@ static int fail(char* error, size_t size, const char* fmt, ...)
     return -1;
 }
 
-/* Quantization steps per metre along each axis of the mesh's box (0 where it is flat). */
-static void steps_per_metre(const tb_bvh* bvh, double scale[3])
+void tb_bvh_steps_per_metre(const tb_bvh* bvh, double scale[3])
 {
     for (int a = 0; a < 3; a++) {
         double extent = (double)bvh->hi[a] - bvh->lo[a];
@@ -176,7 +175,7 @@ static void measure(build* b, uint32_t n)
         }
         b->order[t] = t;
     }
-    steps_per_metre(bvh, b->scale);
+    tb_bvh_steps_per_metre(bvh, b->scale);
 }
 
 int tb_bvh_build(const float* xyz, uint32_t vertex_count, const uint32_t* indices,
@@ -240,7 +239,7 @@ uint32_t tb_bvh_query(const tb_bvh* bvh, const float lo[3], const float hi[3],
     if (!overlaps(lo, hi, bvh->lo, bvh->hi)) return 0;
     double scale[3];
     uint32_t q[6], looked = 0;
-    steps_per_metre(bvh, scale);
+    tb_bvh_steps_per_metre(bvh, scale);
     quantize(bvh, scale, lo, hi, q);
     for (uint32_t i = 0; i < bvh->node_count; looked++) {
         const tb_gpu_uvec4 n = bvh->nodes[i].q;

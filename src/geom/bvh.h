@@ -37,6 +37,10 @@ int tb_bvh_build(const float* xyz, uint32_t vertex_count, const uint32_t* indice
 
 void tb_bvh_free(tb_bvh* bvh);
 
+/* Quantization steps per metre along each axis of the mesh's box (65535 / extent; 0 where
+ * the mesh is flat): what a walk needs, with bvh->lo, to quantize its query. */
+void tb_bvh_steps_per_metre(const tb_bvh* bvh, double scale[3]);
+
 /* A node's box in mesh coordinates (dequantized): contains the node's triangles. */
 void tb_bvh_node_box(const tb_bvh* bvh, uint32_t node, float lo[3], float hi[3]);
 
