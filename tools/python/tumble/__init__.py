@@ -687,33 +687,28 @@ class World:
         self._check(lib.tb_body_get_mass(self._handle(), _as_body("body", body)._c(), m, i))
         return m[0], np.array([i.x, i.y, i.z], dtype=np.float32)
 
+    def _read_bulk(self, read, bodies, second):
+        """Two float32 arrays from one bulk read of a Body or Bodies: (n, 3) as tb_vec3,
+        and (n, 3) tb_vec3 or (n, 4) tb_quat as `second` says."""
+        ids, n, keep = _as_bodies("bodies", bodies)
+        first = np.empty((n, 3), dtype=np.float32)
+        other = np.empty((n, 4 if second == "tb_quat" else 3), dtype=np.float32)
+        if n:
+            self._check(read(self._handle(), ids, n, ffi.from_buffer("tb_vec3[]", first),
+                             ffi.from_buffer(second + "[]", other)))
+        else:
+            self._handle()
+        return first, other
+
     def transforms(self, bodies):
         """Positions (n, 3) and rotations (n, 4, x y z w) of a Body or Bodies as float32
         arrays, in one tb_world_read_transforms call."""
-        ids, n, keep = _as_bodies("bodies", bodies)
-        positions = np.empty((n, 3), dtype=np.float32)
-        rotations = np.empty((n, 4), dtype=np.float32)
-        if n:
-            self._check(lib.tb_world_read_transforms(
-                self._handle(), ids, n, ffi.from_buffer("tb_vec3[]", positions),
-                ffi.from_buffer("tb_quat[]", rotations)))
-        else:
-            self._handle()
-        return positions, rotations
+        return self._read_bulk(lib.tb_world_read_transforms, bodies, "tb_quat")
 
     def aabbs(self, bodies):
         """World-space boxes (mins (n, 3), maxs (n, 3)) as the last step's broadphase saw
         them."""
-        ids, n, keep = _as_bodies("bodies", bodies)
-        mins = np.empty((n, 3), dtype=np.float32)
-        maxs = np.empty((n, 3), dtype=np.float32)
-        if n:
-            self._check(lib.tb_world_read_aabbs(
-                self._handle(), ids, n, ffi.from_buffer("tb_vec3[]", mins),
-                ffi.from_buffer("tb_vec3[]", maxs)))
-        else:
-            self._handle()
-        return mins, maxs
+        return self._read_bulk(lib.tb_world_read_aabbs, bodies, "tb_vec3")
 
     def contacts(self):
         """Contact points of the last step, grouped by pair, as a numpy structured array of
