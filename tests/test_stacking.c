@@ -33,6 +33,22 @@ static double distance(tb_vec3 a, tb_vec3 b)
     return sqrt(dx * dx + dy * dy + dz * dz);
 }
 
+/* Every check of a scene, printed. */
+static void print_checks(const scene_checks* c)
+{
+    for (uint32_t i = 0; i < c->count; i++)
+        print_message("  %s %g\n", c->items[i].key, c->items[i].value);
+}
+
+/* The value of check `key`; fails the test when the scene reported none. */
+static double check_of(const scene_checks* c, const char* key)
+{
+    for (uint32_t i = 0; i < c->count; i++)
+        if (!strcmp(c->items[i].key, key)) return c->items[i].value;
+    fail_msg("the scene reported no check '%s'", key);
+    return NAN;
+}
+
 /* Builds scene `name` with n boxes, steps it STEPS times at its dt with default settings,
  * and follows every box's displacement from its start after each step. A NaN pose counts
  * as an infinite displacement, so it cannot hide behind a comparison that is false. */
@@ -65,10 +81,8 @@ static run run_scene(const char* name, uint32_t n, uint32_t expect_boxes)
     }
     scene_checks checks = { 0 };
     th_assert_ok(sc->check(w, inst, STEPS, sc->dt, &checks));
-    for (uint32_t i = 0; i < checks.count; i++) {
-        print_message("  %s %g\n", checks.items[i].key, checks.items[i].value);
-        if (!strcmp(checks.items[i].key, "nan")) r.nan = (uint32_t)checks.items[i].value;
-    }
+    print_checks(&checks);
+    r.nan = (uint32_t)check_of(&checks, "nan");
     print_message("  %s: max drift %.4f m (box %u, step %u), top box %.4f m\n", name,
                   r.max_drift, r.worst_box, r.worst_step, r.max_top_drift);
     free(x0);
@@ -102,32 +116,35 @@ static void test_pyramid_of_55_stands(void** state)
     assert_true(r.max_drift < 0.01);
 }
 
+/* Scene `name` with n bodies (its seed 1) after `steps` steps at its dt, default settings:
+ * its checks, printed. */
+static scene_checks checks_after(const char* name, uint32_t n, uint32_t steps)
+{
+    tb_world* w = th_world_create(NULL);
+    const scene* sc = scene_find(name);
+    assert_non_null(sc);
+    scene_params params = { n, 1 };
+    scene_instance* inst = NULL;
+    th_assert_ok(sc->build(w, &params, &inst));
+    th_assert_ok(tb_world_step_n(w, sc->dt, steps));
+    scene_checks checks = { 0 };
+    th_assert_ok(sc->check(w, inst, steps, sc->dt, &checks));
+    print_checks(&checks);
+    sc->destroy(inst);
+    th_world_destroy(w);
+    return checks;
+}
+
 /* 1000 random convex hulls poured into the walled container settle within 300 steps (5 s):
  * no NaN, none escaped, nearly all at rest, and no two overlap by 1 cm or more. */
 static void test_hull_pour_settles(void** state)
 {
     (void)state;
-    tb_world* w = th_world_create(NULL);
-    const scene* sc = scene_find("hulls");
-    assert_non_null(sc);
-    scene_params params = { 1000, 1 };
-    scene_instance* inst = NULL;
-    th_assert_ok(sc->build(w, &params, &inst));
-    for (int step = 0; step < 300; step++) th_assert_ok(tb_world_step(w, sc->dt));
-    scene_checks checks = { 0 };
-    th_assert_ok(sc->check(w, inst, 300, sc->dt, &checks));
-    int seen = 0;
-    for (uint32_t i = 0; i < checks.count; i++) {
-        const char* key = checks.items[i].key;
-        double value = checks.items[i].value;
-        print_message("  %s %g\n", key, value);
-        if (!strcmp(key, "nan") || !strcmp(key, "escaped")) assert_true(value == 0), seen++;
-        if (!strcmp(key, "max_penetration")) assert_true(value < 0.01), seen++;
-        if (!strcmp(key, "resting")) assert_true(value >= 0.98), seen++;
-    }
-    assert_int_equal(seen, 4);
-    sc->destroy(inst);
-    th_world_destroy(w);
+    scene_checks c = checks_after("hulls", 1000, 300);
+    assert_true(check_of(&c, "nan") == 0);
+    assert_true(check_of(&c, "escaped") == 0);
+    assert_true(check_of(&c, "max_penetration") < 0.01);
+    assert_true(check_of(&c, "resting") >= 0.98);
 }
 
 /* The deep pile at 4,000 boxes: 16 layers fall into walls 10 m high and land in columns;
@@ -136,29 +153,13 @@ static void test_hull_pour_settles(void** state)
 static void test_deep_pile_stands(void** state)
 {
     (void)state;
-    tb_world* w = th_world_create(NULL);
-    const scene* sc = scene_find("deep");
-    assert_non_null(sc);
-    scene_params params = { 4000, 1 };
-    scene_instance* inst = NULL;
-    th_assert_ok(sc->build(w, &params, &inst));
-    th_assert_ok(tb_world_step_n(w, sc->dt, 600));
-    scene_checks checks = { 0 };
-    th_assert_ok(sc->check(w, inst, 600, sc->dt, &checks));
-    int seen = 0;
-    for (uint32_t i = 0; i < checks.count; i++) {
-        const char* key = checks.items[i].key;
-        double value = checks.items[i].value;
-        print_message("  %s %g\n", key, value);
-        if (!strcmp(key, "nan") || !strcmp(key, "escaped")) assert_true(value == 0), seen++;
-        if (!strcmp(key, "resting")) assert_true(value >= 0.99), seen++;
-        if (!strcmp(key, "max_penetration")) assert_true(value < 0.01), seen++;
-        if (!strcmp(key, "layers")) assert_true(value == 16), seen++;
-        if (!strcmp(key, "column_min")) assert_true(value >= 14.0), seen++;
-    }
-    assert_int_equal(seen, 6);
-    sc->destroy(inst);
-    th_world_destroy(w);
+    scene_checks c = checks_after("deep", 4000, 600);
+    assert_true(check_of(&c, "nan") == 0);
+    assert_true(check_of(&c, "escaped") == 0);
+    assert_true(check_of(&c, "resting") >= 0.99);
+    assert_true(check_of(&c, "max_penetration") < 0.01);
+    assert_true(check_of(&c, "layers") == 16);
+    assert_true(check_of(&c, "column_min") >= 14.0);
 }
 
 int main(void)
