@@ -22,8 +22,10 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 160);
+    assert_int_equal(sizeof(tb_gpu_params), 192);
     assert_int_equal(offsetof(tb_gpu_params, contact_arrays), 128);
+    assert_int_equal(offsetof(tb_gpu_params, block), 160);
+    assert_int_equal(offsetof(tb_gpu_params, block_more), 176);
     assert_int_equal(offsetof(tb_gpu_params, capacity), 64);
     assert_int_equal(offsetof(tb_gpu_params, contact), 80);
     assert_int_equal(offsetof(tb_gpu_params, soft), 96);
@@ -77,7 +79,9 @@ static void test_bindings_distinct(void** state)
                       TB_BIND_BODY_PAIR_COUNT, TB_BIND_GRID_KEYS, TB_BIND_GRID_BODIES,
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
                       TB_BIND_COLOUR_LIST, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
-                      TB_BIND_COLOUR_WORK, TB_BIND_PLUGIN_PARAMS };
+                      TB_BIND_COLOUR_WORK, TB_BIND_PLUGIN_PARAMS, TB_BIND_BLOCK_START,
+                      TB_BIND_BLOCK_FILL, TB_BIND_BODY_COLOUR, TB_BIND_BLOCK_LIST,
+                      TB_BIND_BLOCK_ENTRIES };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);

@@ -79,7 +79,17 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_PLUGIN_PARAMS   25 /* vec4[TB_MAX_PLUGINS * TB_PLUGIN_PARAM_VEC4S]: each loaded
                                       plugin's parameter block (abi/tumble_plugin.h), the host's
                                       copy uploaded before a submission when it changed */
-#define TB_BIND_COUNT           26
+/* The block solver (glsl/block/, src/solver/block.c), per body slot: */
+#define TB_BIND_BLOCK_START     26 /* uint[]: first entry of each dynamic body's contact list in
+                                      block_entries (counts, scanned in place) */
+#define TB_BIND_BLOCK_FILL      27 /* uint[]: entries of each body's list (filled by atomics, then
+                                      sorted so the order is the pairs') */
+#define TB_BIND_BODY_COLOUR     28 /* uint[]: each dynamic body's colour | the colouring round that
+                                      gave it << 8 (TB_BLOCK_NO_COLOUR: none yet) */
+#define TB_BIND_BLOCK_LIST      29 /* uint[]: dynamic bodies grouped by colour (counters.colour) */
+#define TB_BIND_BLOCK_ENTRIES   30 /* uint[2 * pair cap]: pair index | TB_BLOCK_SIDE_B when the body
+                                      is the pair's body b, grouped by body (block_start) */
+#define TB_BIND_COUNT           31
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -89,8 +99,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * does nothing, so the bodies keep the state they had before the step; the host grows
  * what overflowed and runs the step again. */
 #define TB_ABORT_PAIRS          TB_U(1)   /* more pairs than the pair capacity */
-#define TB_ABORT_COLOURS        TB_U(2)
-#define TB_ABORT_EVENTS         TB_U(4)   /* more contact events than the event capacity */   /* constraints left uncoloured after every colouring round */
+#define TB_ABORT_COLOURS        TB_U(2)   /* constraints (or, for the block solver, bodies)
+                                             left uncoloured by the recorded rounds */
+#define TB_ABORT_EVENTS         TB_U(4)   /* more contact events than the event capacity */
 
 /* Graph colouring: at most this many colours (rounds). Claims pack the round into the top
  * bits and a permutation of the constraint index into the low TB_COLOUR_INDEX_BITS. */
@@ -147,6 +158,14 @@ TB_STRUCT(tb_gpu_params) {
     TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
     TB_UVEC4 contact_arrays[2]; /* device addresses as (low, high) pairs: [0].xy manifolds,
                                    [0].zw prev_manifolds, [1].xy constraints, [1].zw unused */
+    TB_VEC4 block;          /* the block solver's contacts (tb_block_settings): x starting
+                               stiffness, y its growth per metre of error, z largest stiffness
+                               (all in units of the contact's effective mass / dt^2), w the share
+                               of last step's force a contact starts from */
+    TB_VEC4 block_more;     /* x the share of a step's starting penetration left for later
+                               steps (stabilisation), y z reserved, w the share of last step's
+                               stiffness a contact starts from (a pair's stiffness is carried
+                               in tb_gpu_manifold.axis.w) */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
@@ -189,6 +208,11 @@ TB_STRUCT(tb_gpu_solver_body) {
     TB_VEC4 inv_inertia_diag; /* world inverse inertia tensor: xx, yy, zz; w unused */
     TB_VEC4 inv_inertia_off;  /* xy, xz, yz; w unused */
 };
+
+/* The block solver: entries of a body's contact list, and its colouring. */
+#define TB_BLOCK_SIDE_B         TB_U(0x80000000)
+#define TB_BLOCK_NO_COLOUR      TB_U(0xffffffff)
+#define TB_BLOCK_NOT_SOLVED     TB_U(0xfffffffe)   /* not dynamic: never coloured nor solved */
 
 /* Solver sweeps (tb_gpu_push.args.z of solver/solve): what a sweep over the colours does. */
 #define TB_SOLVE_BIAS           TB_U(0) /* solve with the soft push-out of penetration */
@@ -431,7 +455,8 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
                                  y its separation (float bits), z 1 while its points are
-                                 left to narrowphase/hull_points, w unused */
+                                 left to narrowphase/hull_points, w the block solver's stiffness
+                                 of the pair (float bits; see glsl/block/) */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are

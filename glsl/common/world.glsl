@@ -36,6 +36,11 @@ layout(set = 0, binding = TB_BIND_COLOUR_LIST, std430) buffer ColourList { uint 
 layout(set = 0, binding = TB_BIND_COLOUR_WORK, std430) buffer ColourWork { uint colour_work[]; };
 layout(set = 0, binding = TB_BIND_HULL_VECTORS, std430) readonly buffer HullVectors { vec4 hull_vectors[]; };
 layout(set = 0, binding = TB_BIND_HULL_TOPOLOGY, std430) readonly buffer HullTopology { uint hull_topology[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_START, std430) buffer BlockStart { uint block_start[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_FILL, std430) buffer BlockFill { uint block_fill[]; };
+layout(set = 0, binding = TB_BIND_BODY_COLOUR, std430) buffer BodyColour { uint body_colour[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_LIST, std430) buffer BlockList { uint block_list[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_ENTRIES, std430) buffer BlockEntries { uint block_entries[]; };
 
 // The contact arrays live at device addresses (see layout.h); these names read like arrays.
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer ManifoldArray { tb_gpu_manifold v[]; };

@@ -19,7 +19,8 @@ static void write_params(tb_world* w, float dt)
     uint32_t x = groups < max_x ? groups : max_x;
     tb_gpu_params* p = &w->params;
     p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
-    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, w->substeps, w->body_set_version };
+    uint32_t substeps = w->block_solver ? 1 : w->substeps;
+    p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, substeps, w->body_set_version };
     p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
@@ -27,8 +28,11 @@ static void write_params(tb_world* w, float dt)
     p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold,
                                 w->contact_push_speed, 0 };
     tb_solver_contact contact = { w->contact_hertz, w->contact_damping_ratio };
-    p->soft = tb_solver_softness(&contact, dt / (float)w->substeps, 1.0);
-    p->soft_static = tb_solver_softness(&contact, dt / (float)w->substeps, 2.0);
+    p->soft = tb_solver_softness(&contact, dt / (float)substeps, 1.0);
+    p->soft_static = tb_solver_softness(&contact, dt / (float)substeps, 2.0);
+    const tb_block_settings* b = &w->block_settings;
+    p->block = (tb_gpu_vec4){ b->stiffness, b->growth, b->max_stiffness, b->warm_share };
+    p->block_more = (tb_gpu_vec4){ b->stabilisation, 0, 0, b->stiffness_carry };
     const tb_buffer* pair = w->sim.pair;
     p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
                                             pair[TB_SIM_PREV_MANIFOLDS].address);

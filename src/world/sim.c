@@ -12,6 +12,8 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
     [TB_SIM_GRID_KEYS] = TB_BIND_GRID_KEYS, [TB_SIM_GRID_BODIES] = TB_BIND_GRID_BODIES,
     [TB_SIM_GRID_TABLE] = TB_BIND_GRID_TABLE, [TB_SIM_LARGE_FLAGS] = TB_BIND_LARGE_FLAGS,
     [TB_SIM_LARGE_LIST] = TB_BIND_LARGE_LIST, [TB_SIM_BODY_SCRATCH] = UINT32_MAX,
+    [TB_SIM_BLOCK_START] = TB_BIND_BLOCK_START, [TB_SIM_BLOCK_FILL] = TB_BIND_BLOCK_FILL,
+    [TB_SIM_BODY_COLOUR] = TB_BIND_BODY_COLOUR, [TB_SIM_BLOCK_LIST] = TB_BIND_BLOCK_LIST,
 };
 
 /* The contact arrays are reached by address (tb_gpu_params.contact_arrays), not bound. */
@@ -20,6 +22,7 @@ static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
     [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_TAIL_SCRATCH] = UINT32_MAX, [TB_SIM_EVENT_MARKS] = UINT32_MAX,
+    [TB_SIM_BLOCK_ENTRIES] = TB_BIND_BLOCK_ENTRIES,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -51,7 +54,8 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_MANIFOLDS:
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
-    case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
+    case TB_SIM_COLOUR_WORK:
+    case TB_SIM_BLOCK_ENTRIES: return 2 * (VkDeviceSize)capacity * 4;
     default: return (VkDeviceSize)capacity * 4;
     }
 }

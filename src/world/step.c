@@ -109,10 +109,31 @@ static void keep_stage(builder* b)
 
 /* The colouring; when it runs all TB_MAX_COLOURS rounds, also the list of the constraints
  * it may leave to the solver's tail. */
+/* The block solver's contact lists and colouring of bodies, in place of the colouring of
+ * constraints. */
+static void block_colour_stage(builder* b)
+{
+    tb_world* w = b->w;
+    tb_sim* sim = &w->sim;
+    tb_block_lists lists = {
+        .prims = &w->prims, .starts = tb_gpu_ptr_of(&sim->body[TB_SIM_BLOCK_START], 0),
+        .slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8),
+        .scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0),
+        .body_capacity = sim->body_capacity,
+    };
+    if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
+                                                w->colour_rounds);
+    end_stage(b, "solver/colour");
+}
+
 static void colour_stage(builder* b)
 {
     tb_world* w = b->w;
     tb_sim* sim = &w->sim;
+    if (w->block_solver) {
+        block_colour_stage(b);
+        return;
+    }
     if (!b->r) b->r = tb_solver_record_colouring(&w->solver, &b->list, b->counters,
                                                  w->colour_rounds, TB_SOLVER_SUB_ROUNDS);
     tb_solver_tail tail = {
@@ -139,6 +160,15 @@ static void prepare_stage(builder* b)
 static void solve_stage(builder* b)
 {
     tb_world* w = b->w;
+    if (w->block_solver) {
+        /* One substep's gravity and motion: the velocities and the inertial guess. */
+        if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 0);
+        if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 1);
+        if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
+                                                w->colour_rounds, w->block_settings.iterations);
+        end_stage(b, "solver/solve");
+        return;
+    }
     if (!b->r) b->r = tb_solver_record_solve(&w->solver, &b->list, b->counters,
                                              w->colour_rounds, w->substeps,
                                              w->solver_iterations);

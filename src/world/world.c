@@ -53,6 +53,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
                             w->store.capacity, pairs);   /* clamped to the device's limit */
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
+    if (!r) r = tb_block_init(&w->block, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_world_plugins_init(w);
     w->bp.kit = w->kit;
@@ -83,6 +84,9 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->broadphase_kind = broadphase;
     w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
+    const char* solver = getenv("TUMBLE_SOLVER");
+    w->block_solver = solver && strcmp(solver, "block") == 0;
+    w->block_settings = tb_block_default_settings();
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
     tb_result r = create_gpu_objects(w, def, extra);
@@ -107,6 +111,7 @@ void tb_world_free(tb_world* w)
         if (w->broadphase) w->broadphase->destroy(&w->bp);
         tb_broadphase_shared_destroy(&w->bp);
         tb_solver_destroy(&w->solver);
+        tb_block_destroy(&w->block);
         tb_sim_destroy(&w->sim);
         tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);

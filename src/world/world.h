@@ -20,6 +20,7 @@
 #include "layout.h"
 #include "narrowphase/narrowphase.h"
 #include "plugin/plugin.h"
+#include "solver/block.h"
 #include "solver/solver.h"
 #include "tumble.h"
 #include "world/body_store.h"
@@ -83,6 +84,9 @@ struct tb_world {
     tb_broadphase_ctx bp;                  ///< what the broadphase sees
     tb_narrowphase narrowphase;
     tb_solver solver;
+    tb_block_solver block;
+    int block_solver;            ///< the step solves with the block solver (solver/block.h)
+    tb_block_settings block_settings;
     uint32_t body_set_version;             ///< bodies created and destroyed so far
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)

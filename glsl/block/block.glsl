@@ -1,0 +1,94 @@
+// The block solver (augmented vertex block descent, Giles, Diaz and Yuksel 2025): each
+// dynamic body in turn moves to the pose that minimises its inertia's energy plus that of
+// its contacts, one 6x6 Newton step on the body alone; bodies of one colour share no
+// contact and move in parallel. A contact is a hard constraint reached by an augmented
+// Lagrangian: a stiffness that grows while the contact is violated, and a force (the
+// multiplier) that keeps what the stiffness found, carried from step to step, so a deep pile
+// holds its load without sinking. Shared by glsl/block/*.comp.
+//
+// A contact point has three rows, C = (separation, and the displacements of b against a
+// along the two friction directions since the step began). Its forces are
+//     f_n = max(0, lambda_n - k C_n),   f_t = lambda_t - k C_t inside the cone |f_t| <= mu f_n,
+// with lambda the multipliers (kept as impulses lambda * dt in manifolds[p].impulse) and k the
+// point's stiffness (constraints[p].p[k].mass.w, N/m). Positions are the substep records'
+// delta_position and delta_rotation: how far each body has moved since the step began.
+#ifndef TB_BLOCK_GLSL
+#define TB_BLOCK_GLSL
+
+#include "world.glsl"
+#include "quat.glsl"
+
+bool block_dynamic(uint i)
+{
+    return body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC);
+}
+
+// The body at the other end of entry e of a contact list.
+uint block_other(uint e)
+{
+    uvec2 ab = pairs[pair_half_base() + (e & ~TB_BLOCK_SIDE_B)].xy;
+    return (e & TB_BLOCK_SIDE_B) != 0u ? ab.x : ab.y;
+}
+
+// The angle times the axis of unit quaternion q (q and -q alike).
+vec3 rotation_vector(vec4 q)
+{
+    if (q.w < 0.0) q = -q;
+    float s = length(q.xyz);
+    if (s < 1e-7) return 2.0 * q.xyz;
+    return (2.0 * atan(s, q.w) / s) * q.xyz;
+}
+
+// The unit quaternion turning by angle |v| about v.
+vec4 quat_of_rotation_vector(vec3 v)
+{
+    float angle = length(v);
+    if (angle < 1e-7) return normalize(vec4(0.5 * v, 1.0));
+    return vec4(v * (sin(0.5 * angle) / angle), cos(0.5 * angle));
+}
+
+// How far the point at lever arm r (world, at the step's start) has moved with its body.
+vec3 moved_by(vec3 dp, vec4 dq, vec3 r)
+{
+    return dp + quat_rotate(dq, r) - r;
+}
+
+// The rows of point k of a contact whose bodies moved by (dpa, dqa) and (dpb, dqb). A
+// penetration the step began with counts only in part (params.block_more.x of it is left
+// to later steps), so deep contacts are pushed apart gently.
+vec3 block_rows(tb_gpu_constraint c, vec3 n, uint k, vec3 dpa, vec4 dqa, vec3 dpb, vec4 dqb)
+{
+    vec3 ra = c.p[k].ra.xyz, rb = c.p[k].rb.xyz;
+    vec3 d = moved_by(dpb, dqb, rb) - moved_by(dpa, dqa, ra);
+    float s = c.p[k].rb.w + dot(rb - ra, n);
+    if (s < 0.0) s *= 1.0 - params.block_more.x;
+    return vec3(s + dot(d, n), dot(d, c.tangent1.xyz), dot(d, c.tangent2.xyz));
+}
+
+
+// The forces of a point with multipliers lambda and stiffness k at rows C; `on` says
+// which rows are on their constraint (not apart, not sliding): only those grow stiffer.
+vec3 block_forces(vec3 lambda, float k, vec3 C, float friction, out bvec3 on)
+{
+    float fn = max(lambda.x - k * C.x, 0.0);
+    vec2 ft = lambda.yz - k * C.yz;
+    float limit = friction * fn, size = length(ft);
+    bool sliding = size > limit;
+    if (sliding) ft *= size > 0.0 ? limit / size : 0.0;
+    on = bvec3(fn > 0.0, !sliding && fn > 0.0, !sliding && fn > 0.0);
+    return vec3(fn, ft);
+}
+
+// Step length, and effective mass over dt^2: the stiffness unit of a contact.
+float block_h()
+{
+    return params.soft.w;
+}
+
+float block_stiffness_unit(tb_gpu_constraint c, uint k)
+{
+    float h = block_h();
+    return c.p[k].ra.w / (h * h);
+}
+
+#endif

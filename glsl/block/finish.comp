@@ -1,0 +1,30 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// After the count of the bodies of each colour, one workgroup: colour[c].y = first index of
+// colour c in block_list, colour[c].w = 0 (the fill's cursor), colour_dispatch[c] covering
+// colour[c].x bodies in workgroups of TB_SOLVER_WORKGROUP_SIZE; solver.x = the colours in use
+// (the highest + 1). A body left uncoloured, or coloured beyond the colours the host recorded
+// sweeps for (params.capacity.z), abandons the step (TB_ABORT_COLOURS): the host records more
+// rounds and runs it again.
+#include "block.glsl"
+
+void main()
+{
+    bool aborted = step_aborted();
+    barrier();
+    if (aborted) return;
+    for (uint c = gl_LocalInvocationID.x; c < TB_MAX_COLOURS; c += gl_WorkGroupSize.x) {
+        uint first = 0u;
+        for (uint k = 0u; k < c; k++) first += counters.colour[k].x;
+        counters.colour[c].y = first;
+        counters.colour[c].w = 0u;
+        counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x, TB_SOLVER_WORKGROUP_SIZE);
+    }
+    if (gl_LocalInvocationID.x != 0u) return;
+    uint used = 0u;
+    for (uint c = 0u; c < TB_MAX_COLOURS; c++)
+        if (counters.colour[c].x > 0u) used = c + 1u;
+    counters.solver.x = used;
+    if (counters.solver.y > 0u || used > params.capacity.z)
+        atomicOr(counters.state.x, TB_ABORT_COLOURS);
+}

@@ -1,0 +1,45 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Per dynamic body, after start: the pose the iterations start from. The inertial pose
+// (velocity with gravity, over the step) is where a body in free flight goes, but a body
+// at rest on others would start each step sunk by g dt^2 into them and the sweeps would
+// spend themselves lifting the pile back. So the guess takes back as much of gravity as the
+// forces its contacts start with (last step's, carried over) hold up: a resting body starts
+// where it is. Only that much: the rest of those forces (an impact's, a push sideways) is
+// left to the solve, or a stale impact force would launch the body. The solve's target
+// stays the inertial pose.
+#include "block.glsl"
+#include "../integrate/motion.glsl"
+
+void main()
+{
+    uint i = body_thread_index();
+    if (i >= params.counts.x || step_aborted() || body_colour[i] == TB_BLOCK_NOT_SOLVED) return;
+    tb_gpu_solver_body s = solver_bodies[i];
+    float h = block_h();
+    vec3 force = vec3(0.0);
+    uint first = block_start[i], n = block_fill[i];
+    for (uint e = 0u; e < n; e++) {
+        uint entry = block_entries[first + e];
+        uint p = entry & ~TB_BLOCK_SIDE_B;
+        bool is_b = (entry & TB_BLOCK_SIDE_B) != 0u;
+        tb_gpu_constraint c = constraints[p];
+        vec3 normal = manifolds[p].normal.xyz;
+        uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+        for (uint k = 0u; k < count; k++) {
+            vec3 l = manifolds[p].impulse[k].xyz / h;
+            vec3 f = normal * l.x + c.tangent1.xyz * l.y + c.tangent2.xyz * l.z;
+            if (!is_b) f = -f;
+            force += f;
+        }
+    }
+    vec3 g = params.gravity.xyz * s.angular.w;
+    float weight = length(g);
+    vec3 v = s.linear.xyz;
+    if (weight > 0.0) {
+        vec3 up = -g / weight;
+        float held = clamp(dot(force, up) * s.linear.w, 0.0, weight);
+        v += h * held * up;
+    }
+    solver_bodies[i].delta_position.xyz = v * h;
+}

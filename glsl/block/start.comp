@@ -1,0 +1,23 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Per pair, before the block solver's iterations: each point starts from the share
+// params.block.w of the force it ended last step with (the narrowphase carried it over as an
+// impulse) and from the larger of the starting stiffness params.block.x and the share
+// params.block_more.w of the pair's stiffness last step (both in units of its effective mass
+// over dt^2; the narrowphase carries the pair's in axis.w).
+#include "block.glsl"
+
+void main()
+{
+    uint p = pair_thread_index();
+    if (p >= counters.state.z || step_aborted()) return;
+    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+    tb_gpu_constraint c = constraints[p];
+    float carried = uintBitsToFloat(manifolds[p].axis.w) * params.block_more.w;
+    float stiffness = max(params.block.x, carried);
+    for (uint k = 0u; k < count; k++) {
+        vec4 impulse = manifolds[p].impulse[k];
+        manifolds[p].impulse[k] = vec4(impulse.xyz * params.block.w, 0.0);
+        constraints[p].p[k].mass.w = stiffness * block_stiffness_unit(c, k);
+    }
+}

@@ -1,0 +1,116 @@
+/* Pipelines and pass lists of the block solver. */
+#include "solver/block.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+tb_block_settings tb_block_default_settings(void)
+{
+    tb_block_settings s = { 10, 1.0f, 100.0f, 100.0f, 0.99f, 0.95f, 0.99f };
+    const char* env = getenv("TUMBLE_BLOCK");
+    if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
+                    &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry);
+    return s;
+}
+
+static const struct { const char* shader; uint32_t workgroup; size_t field; } kernels[] = {
+    { "block/reset", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, reset) },
+    { "block/count", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, count) },
+    { "block/fill", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, fill) },
+    { "block/sort", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, sort) },
+    { "block/colour", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, colour) },
+    { "block/list", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, list) },
+    { "block/finish", TB_MAX_COLOURS, offsetof(tb_block_solver, finish) },
+    { "block/start", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, start) },
+    { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
+    { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
+    { "block/dual", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, dual) },
+    { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
+};
+#define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
+
+static VkPipeline* pipeline_at(tb_block_solver* s, size_t field)
+{
+    return (VkPipeline*)((char*)s + field);
+}
+
+tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines)
+{
+    memset(s, 0, sizeof *s);
+    s->pipelines = pipelines;
+    tb_result r = TB_OK;
+    for (size_t k = 0; k < KERNEL_COUNT && !r; k++)
+        r = tb_pipeline_create(pipelines, kernels[k].shader, kernels[k].workgroup,
+                               pipeline_at(s, kernels[k].field));
+    if (r) tb_block_destroy(s);
+    return r;
+}
+
+void tb_block_destroy(tb_block_solver* s)
+{
+    if (!s->pipelines) return;
+    for (size_t k = 0; k < KERNEL_COUNT; k++) tb_pipeline_destroy(s->pipelines, *pipeline_at(s, kernels[k].field));
+    memset(s, 0, sizeof *s);
+}
+
+static tb_result add(const tb_block_solver* s, tb_pass_list* list, VkPipeline pipeline,
+                     tb_dispatch_rule rule, VkBuffer counters, VkDeviceSize offset, uint32_t x)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, rule, counters, offset, x, 0, 0);
+    return tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
+}
+
+static tb_result per_body(const tb_block_solver* s, tb_pass_list* list, VkPipeline pipeline,
+                          VkBuffer counters, uint32_t x)
+{
+    return add(s, list, pipeline, TB_DISPATCH_PER_BODY, counters, 0, x);
+}
+
+static tb_result per_pair(const tb_block_solver* s, tb_pass_list* list, VkPipeline pipeline,
+                          VkBuffer counters)
+{
+    return add(s, list, pipeline, TB_DISPATCH_INDIRECT, counters,
+               TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0);
+}
+
+uint32_t tb_block_colouring_rounds(uint32_t colours)
+{
+    return 2 * colours + 8;
+}
+
+tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
+                                    VkBuffer counters, const tb_block_lists* lists,
+                                    uint32_t colours)
+{
+    tb_gpu_ptr no_total = { 0 };
+    tb_result r = per_body(s, list, s->reset, counters, 0);
+    if (!r) r = per_pair(s, list, s->count, counters);
+    if (!r) r = tb_prims_scan(lists->prims, list, lists->starts, lists->starts, lists->slots,
+                              lists->body_capacity, no_total, lists->scratch);
+    if (!r) r = per_pair(s, list, s->fill, counters);
+    if (!r) r = per_body(s, list, s->sort, counters, 0);
+    uint32_t rounds = tb_block_colouring_rounds(colours);
+    for (uint32_t round = 0; round < rounds && !r; round++)
+        r = per_body(s, list, s->colour, counters, round);
+    if (!r) r = per_body(s, list, s->list, counters, 0);
+    if (!r) r = add(s, list, s->finish, TB_DISPATCH_FIXED, counters, 0, 0);
+    if (!r) r = per_body(s, list, s->list, counters, 1);
+    return r;
+}
+
+tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
+                                uint32_t colours, uint32_t iterations)
+{
+    tb_result r = per_pair(s, list, s->start, counters);
+    if (!r) r = per_body(s, list, s->guess, counters, 0);
+    for (uint32_t it = 0; it < iterations && !r; it++) {
+        for (uint32_t c = 0; c < colours && !r; c++)
+            r = add(s, list, s->solve, TB_DISPATCH_INDIRECT, counters,
+                    TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c, c);
+        if (!r) r = per_pair(s, list, s->dual, counters);
+    }
+    if (!r) r = per_body(s, list, s->end, counters, 0);
+    return r;
+}

@@ -1,0 +1,80 @@
+/* The block solver: the host side of glsl/block/ (augmented vertex block descent).
+ *
+ * EXPERIMENTAL, not the default and not in the public API: a world uses it only when the
+ * environment variable TUMBLE_SOLVER=block is set at its creation (TUMBLE_BLOCK overrides
+ * its settings) while it is being measured against the soft step. It has no restitution
+ * yet (bodies land dead), and its contact events carry the normal impulse only.
+ *
+ * Instead of the soft step's constraints coloured and solved one at a time, it colours the
+ * dynamic bodies (no two touching bodies share a colour) and moves each body in turn to
+ * the pose that best balances its inertia against its contacts, one 6x6 Newton step per
+ * body, all bodies of a colour at once; a contact is a hard constraint reached by an
+ * augmented Lagrangian (glsl/block/block.glsl), so loads are carried without the soft
+ * contact's give.
+ *
+ * Its passes read and write the world's set 0: the pairs and manifolds of the step, the
+ * constraints solver/prepare wrote (lever arms, friction directions, effective masses), the
+ * solver records apply_forces wrote, and its own per-body lists (block_start, block_fill,
+ * block_entries), colours (body_colour, block_list, counters.colour) and stiffnesses
+ * (constraints' mass.w).
+ *
+ * In the step: lists and colouring (in place of the soft step's constraint colouring) ->
+ * prepare -> apply_forces -> the velocities' gravity and the inertial guess (the soft
+ * step's substep passes with one substep) -> the iterations -> velocities -> integrate.
+ */
+#ifndef TB_SOLVER_BLOCK_H
+#define TB_SOLVER_BLOCK_H
+
+#include "gpu/graph.h"
+#include "gpu/prims.h"
+#include "layout.h"
+
+typedef struct tb_block_solver {
+    tb_pipelines* pipelines;
+    VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, solve, dual, end;
+} tb_block_solver;
+
+/// What building the contact lists needs: the list starts (uint per body slot, scanned in
+/// place), the number of body slots (a GPU uint), the body capacity and scan scratch for it.
+typedef struct tb_block_lists {
+    tb_prims* prims;
+    tb_gpu_ptr starts, slots, scratch;
+    uint32_t body_capacity;
+} tb_block_lists;
+
+/// How the block solver solves (tb_gpu_params.block and block_more; see glsl/block/).
+typedef struct tb_block_settings {
+    uint32_t iterations;     ///< sweeps over the colours per step
+    float stiffness;         ///< a contact's starting stiffness, in effective mass / dt^2
+    float growth;            ///< its growth per metre of error and sweep, same unit
+    float max_stiffness;     ///< the most it grows to, same unit
+    float warm_share;        ///< the share of last step's force a contact starts from
+    float stabilisation;     ///< the share of a starting penetration left to later steps
+    float stiffness_carry;   ///< the share of last step's stiffness a contact starts from
+} tb_block_settings;
+
+/// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry"
+/// overrides them while the solver is being tuned).
+tb_block_settings tb_block_default_settings(void);
+
+tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines);
+void tb_block_destroy(tb_block_solver* s);
+
+/// Colouring rounds recorded for `colours` colours: more rounds than colours, as a round
+/// colours only the bodies that beat their uncoloured neighbours.
+uint32_t tb_block_colouring_rounds(uint32_t colours);
+
+/// The contact list of every dynamic body and the colouring of the dynamic bodies:
+/// reset, count, scan, fill, sort, tb_block_colouring_rounds(colours) colouring rounds,
+/// then the bodies listed by colour. `counters` is the buffer bound at TB_BIND_COUNTERS.
+tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
+                                    VkBuffer counters, const tb_block_lists* lists,
+                                    uint32_t colours);
+
+/// The iterations (after the solver records hold the velocities with gravity and the
+/// inertial guess): start, then `iterations` times a solve of colours 0..colours-1 and the
+/// multipliers' update; then the velocities.
+tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
+                                uint32_t colours, uint32_t iterations);
+
+#endif
