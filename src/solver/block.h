@@ -72,8 +72,10 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
                                     uint32_t colours);
 
 /// The iterations (after the solver records hold the velocities with gravity and the
-/// inertial guess): start, then `iterations` times a solve of colours 0..colours-1 and the
-/// multipliers' update; then the velocities.
+/// inertial pose): start, guess, then `iterations` times a solve of colours 0..colours-1
+/// and the multipliers' update; then the velocities. (Sweeping the colours back on every
+/// other iteration, a symmetric Gauss-Seidel, measured worse: a 20-box column sank 8.4 cm
+/// instead of 8.6 mm.)
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t iterations);
 
