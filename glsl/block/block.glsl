@@ -53,16 +53,26 @@ vec3 moved_by(vec3 dp, vec4 dq, vec3 r)
     return dp + quat_rotate(dq, r) - r;
 }
 
-// The rows of point k of a contact whose bodies moved by (dpa, dqa) and (dpb, dqb). A
+// Point k's static friction slip, carried from step to step (tb_gpu_manifold.slip).
+vec2 block_slip(uint p, uint k)
+{
+    vec4 s = manifolds[p].slip[k >> 1];
+    return (k & 1u) == 0u ? s.xy : s.zw;
+}
+
+// The rows of point k of pair p whose bodies moved by (dpa, dqa) and (dpb, dqb). A
 // penetration the step began with counts only in part (params.block_more.x of it is left
-// to later steps), so deep contacts are pushed apart gently.
-vec3 block_rows(tb_gpu_constraint c, vec3 n, uint k, vec3 dpa, vec4 dqa, vec3 dpb, vec4 dqb)
+// to later steps), so deep contacts are pushed apart gently. The friction rows count from
+// where the point began to stick, so a load on a slope cannot creep a little every step.
+vec3 block_rows(tb_gpu_constraint c, vec3 n, uint p, uint k, vec3 dpa, vec4 dqa, vec3 dpb,
+                vec4 dqb)
 {
     vec3 ra = c.p[k].ra.xyz, rb = c.p[k].rb.xyz;
     vec3 d = moved_by(dpb, dqb, rb) - moved_by(dpa, dqa, ra);
     float s = c.p[k].rb.w + dot(rb - ra, n);
     if (s < 0.0) s *= 1.0 - params.block_more.x;
-    return vec3(s + dot(d, n), dot(d, c.tangent1.xyz), dot(d, c.tangent2.xyz));
+    vec2 slip = block_slip(p, k) * params.block_more.y;
+    return vec3(s + dot(d, n), slip.x + dot(d, c.tangent1.xyz), slip.y + dot(d, c.tangent2.xyz));
 }
 
 

@@ -74,7 +74,7 @@ void add_contact(inout newton e, uint entry, tb_gpu_solver_body me)
     vec4 dqa = is_b ? other.delta_rotation : me.delta_rotation;
     vec4 dqb = is_b ? me.delta_rotation : other.delta_rotation;
     for (uint k = 0u; k < count; k++) {
-        vec3 C = block_rows(c, n, k, dpa, dqa, dpb, dqb);
+        vec3 C = block_rows(c, n, p, k, dpa, dqa, dpb, dqb);
         float stiffness = c.p[k].mass.w;
         bvec3 on;
         vec3 f = block_forces(manifolds[p].impulse[k].xyz / h, stiffness, C, c.tangent1.w, on);

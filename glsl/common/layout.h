@@ -163,7 +163,9 @@ TB_STRUCT(tb_gpu_params) {
                                (all in units of the contact's effective mass / dt^2), w the share
                                of last step's force a contact starts from */
     TB_VEC4 block_more;     /* x the share of a step's starting penetration left for later
-                               steps (stabilisation), y z reserved, w the share of last step's
+                               steps (stabilisation), y 1 when friction counts from where a
+                               point began to stick (0: from the step's start), z reserved,
+                               w the share of last step's
                                stiffness a contact starts from (a pair's stiffness is carried
                                in tb_gpu_manifold.axis.w) */
 };
@@ -457,6 +459,9 @@ TB_STRUCT(tb_gpu_manifold) {
                                  y its separation (float bits), z 1 while its points are
                                  left to narrowphase/hull_points, w the block solver's stiffness
                                  of the pair (float bits; see glsl/block/) */
+    TB_VEC4 slip[TB_MAX_MANIFOLD_POINTS / 2]; /* the block solver's static friction: how far
+                                 point k's two surfaces have moved apart along the tangents
+                                 since it began to stick (m), in slip[k / 2].xy (k even) or .zw */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are

@@ -90,29 +90,47 @@ np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
     return t;
 }
 
-// The normal and friction impulses last step's point of the same feature ended with (per
-// substep); the step's total normal impulse (w) starts from 0.
+// Last step's point this one continues (NP_NONE: none): the one of the same feature key.
+// Its normal and friction impulses (per substep) and its static friction slip carry over;
+// the step's total normal impulse (w) starts from 0.
 // Features can be ambiguous where corners of the two shapes coincide (equal boxes stacked
-// exactly): a tiny turn relabels the same point. A point no key matches therefore takes
-// the impulse of last step's nearest point within the contact margin, so a resting stack
-// keeps its impulses.
-vec4 np_warm_impulse(np_target t, uint feature, vec3 point)
+// exactly): a tiny turn relabels the same point. A point no key matches therefore continues
+// last step's nearest point within the contact margin, so a resting stack keeps its
+// impulses.
+uint np_warm_match(np_target t, uint feature, vec3 point)
 {
     uint nearest = NP_NONE;
     float best = params.contact.x * params.contact.x;
     for (uint j = 0u; j < t.prev_count; j++) {
-        if (t.prev_features[j] == feature) return vec4(prev_manifolds[t.prev].impulse[j].xyz, 0.0);
+        if (t.prev_features[j] == feature) return j;
         vec3 d = prev_manifolds[t.prev].point[j].xyz - point;
         if (dot(d, d) <= best) { best = dot(d, d); nearest = j; }
     }
-    return nearest == NP_NONE ? vec4(0.0) : vec4(prev_manifolds[t.prev].impulse[nearest].xyz, 0.0);
+    return nearest;
+}
+
+// Point k's static friction slip (the block solver's) in the manifold.
+void np_set_slip(uint slot, uint k, vec2 slip)
+{
+    if ((k & 1u) == 0u) manifolds[slot].slip[k >> 1].xy = slip;
+    else manifolds[slot].slip[k >> 1].zw = slip;
+}
+
+vec2 np_prev_slip(uint prev, uint j)
+{
+    vec4 s = prev_manifolds[prev].slip[j >> 1];
+    return (j & 1u) == 0u ? s.xy : s.zw;
 }
 
 // Point k: world point midway between the surfaces, separation along the normal.
 void np_emit(np_target t, uint k, vec3 point, float separation, uint feature)
 {
     manifolds[t.slot].point[k] = vec4(point, separation);
-    manifolds[t.slot].impulse[k] = np_warm_impulse(t, feature, point);
+    uint j = np_warm_match(t, feature, point);
+    manifolds[t.slot].impulse[k] = j == NP_NONE ? vec4(0.0)
+                                                : vec4(prev_manifolds[t.prev].impulse[j].xyz, 0.0);
+    bool same = j != NP_NONE && t.prev_features[j] == feature;
+    np_set_slip(t.slot, k, same ? np_prev_slip(t.prev, j) : vec2(0.0));
     manifolds[t.slot].feature[k] = feature;
 }
 
@@ -124,6 +142,7 @@ void np_finish(np_target t, uint count, vec3 normal, uint a, uint b, float frict
     for (uint k = count; k < uint(TB_MAX_MANIFOLD_POINTS); k++) {
         manifolds[t.slot].point[k] = vec4(0.0);
         manifolds[t.slot].impulse[k] = vec4(0.0);
+        np_set_slip(t.slot, k, vec2(0.0));
         manifolds[t.slot].feature[k] = 0u;
     }
     manifolds[t.slot].normal = vec4(normal, friction);

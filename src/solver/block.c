@@ -8,10 +8,11 @@
 
 tb_block_settings tb_block_default_settings(void)
 {
-    tb_block_settings s = { 10, 1.0f, 100.0f, 100.0f, 0.99f, 0.95f, 0.99f };
+    tb_block_settings s = { 20, 1.0f, 100.0f, 100.0f, 0.99f, 0.95f, 0.99f, 0.0f };
     const char* env = getenv("TUMBLE_BLOCK");
-    if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
-                    &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry);
+    if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
+                    &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry,
+                    &s.anchored_friction);
     return s;
 }
 
@@ -109,7 +110,8 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
         for (uint32_t c = 0; c < colours && !r; c++)
             r = add(s, list, s->solve, TB_DISPATCH_INDIRECT, counters,
                     TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c, c);
-        if (!r) r = per_pair(s, list, s->dual, counters);
+        if (!r) r = add(s, list, s->dual, TB_DISPATCH_INDIRECT, counters,
+                        TB_COUNTERS_PAIR_DISPATCH_OFFSET, it + 1 == iterations);
     }
     if (!r) r = per_body(s, list, s->end, counters, 0);
     return r;

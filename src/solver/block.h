@@ -51,6 +51,8 @@ typedef struct tb_block_settings {
     float warm_share;        ///< the share of last step's force a contact starts from
     float stabilisation;     ///< the share of a starting penetration left to later steps
     float stiffness_carry;   ///< the share of last step's stiffness a contact starts from
+    float anchored_friction; ///< 1: friction counts from where a point began to stick; 0:
+                             ///< from where the step began (a sticking load creeps)
 } tb_block_settings;
 
 /// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry"
