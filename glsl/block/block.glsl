@@ -101,4 +101,44 @@ float block_stiffness_unit(tb_gpu_constraint c, uint k)
     return c.p[k].ra.w / (h * h);
 }
 
+// The multipliers' update of pair p from where its bodies are now, once a sweep has moved
+// both (solve.comp runs it from the later of the two): the multipliers take the forces the
+// rows now have (lambda <- f), and a point still in contact stiffens by params.block.y (per
+// metre of its normal error, in units of its effective mass over dt^2) up to params.block.z;
+// the pair's stiffest point is kept for the next step (axis.w). The impulses' w is the
+// step's normal impulse so far (f_n dt). After the last sweep (`last`) each point keeps, for
+// the next step, its tangential slip while it sticks (none once it slides).
+void block_dual(uint p, bool last)
+{
+    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
+    if (count == 0u) return;
+    uvec2 ab = pairs[pair_half_base() + p].xy;
+    tb_gpu_solver_body a = solver_bodies[ab.x], b = solver_bodies[ab.y];
+    tb_gpu_constraint c = constraints[p];
+    vec3 n = manifolds[p].normal.xyz;
+    float h = block_h(), stiffest = 0.0;
+    vec2 slip[TB_MAX_MANIFOLD_POINTS];
+    for (uint k = 0u; k < uint(TB_MAX_MANIFOLD_POINTS); k++) slip[k] = vec2(0.0);
+    for (uint k = 0u; k < count; k++) {
+        vec3 C = block_rows(c, n, p, k, a.delta_position.xyz, a.delta_rotation,
+                            b.delta_position.xyz, b.delta_rotation);
+        float stiffness = c.p[k].mass.w;
+        bvec3 on;
+        vec3 f = block_forces(manifolds[p].impulse[k].xyz / h, stiffness, C, c.tangent1.w, on);
+        manifolds[p].impulse[k] = vec4(f * h, f.x * h);
+        float unit = block_stiffness_unit(c, k);
+        if (on.x) {
+            stiffness = min(stiffness + params.block.y * unit * abs(C.x), params.block.z * unit);
+            constraints[p].p[k].mass.w = stiffness;
+        }
+        if (unit > 0.0) stiffest = max(stiffest, stiffness / unit);
+        if (last) slip[k] = on.y ? C.yz : vec2(0.0);
+    }
+    if (last) {
+        manifolds[p].slip[0] = vec4(slip[0], slip[1]);
+        manifolds[p].slip[1] = vec4(slip[2], slip[3]);
+    }
+    manifolds[p].axis.w = floatBitsToUint(stiffest);
+}
+
 #endif

@@ -1,6 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The block solver's primal step for the bodies of one colour (push.args.x = c): thread t <
+// The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y = 1
+// in the last sweep of the step): thread t <
 // counters.colour[c].x moves body block_list[colour[c].y + t] by one Newton step on
 //     E(x) = |x - y|^2_M / (2 dt^2) + sum over its contacts of the rows' energies,
 // y the inertial pose (where its velocity after gravity would take it), with the other
@@ -104,4 +105,14 @@ void main()
     solver_bodies[i].delta_position.xyz = me.delta_position.xyz - x;
     solver_bodies[i].delta_rotation = normalize(quat_mul(quat_of_rotation_vector(-y),
                                                          me.delta_rotation));
+    // The multipliers of the contacts whose other body has already moved in this sweep (a
+    // static one, or one of an earlier colour) are updated here, by the last of their bodies
+    // to move: both are where the sweep leaves them, so this is the update a pass of its own
+    // after the sweep would make (bit for bit), without that pass's dispatch and reads.
+    for (uint k = 0u; k < n; k++) {
+        uint entry = block_entries[first + k];
+        uint word = body_colour[block_other(entry)];
+        if (word == TB_BLOCK_NOT_SOLVED || (word & 0xffu) < colour)
+            block_dual(entry & ~TB_BLOCK_SIDE_B, push.args.y != 0u);
+    }
 }

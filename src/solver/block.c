@@ -27,7 +27,6 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
     { "block/start", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, start) },
     { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
     { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
-    { "block/dual", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, dual) },
     { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
@@ -102,16 +101,19 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 }
 
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, uint32_t iterations)
+                                uint32_t colours, const tb_block_settings* settings)
 {
+    uint32_t iterations = settings->iterations;
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++) {
-        for (uint32_t c = 0; c < colours && !r; c++)
-            r = add(s, list, s->solve, TB_DISPATCH_INDIRECT, counters,
-                    TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c, c);
-        if (!r) r = add(s, list, s->dual, TB_DISPATCH_INDIRECT, counters,
-                        TB_COUNTERS_PAIR_DISPATCH_OFFSET, it + 1 == iterations);
+        uint32_t last = it + 1 == iterations;
+        for (uint32_t c = 0; c < colours && !r; c++) {
+            tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
+                                              TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c,
+                                              c, last, 0);
+            r = tb_pass_list_add(list, s->pipelines->gpu->diag, &solve);
+        }
     }
     if (!r) r = per_body(s, list, s->end, counters, 0);
     return r;

@@ -31,7 +31,7 @@
 
 typedef struct tb_block_solver {
     tb_pipelines* pipelines;
-    VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, solve, dual, end;
+    VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, solve, end;
 } tb_block_solver;
 
 /// What building the contact lists needs: the list starts (uint per body slot, scanned in
@@ -74,11 +74,11 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
                                     uint32_t colours);
 
 /// The iterations (after the solver records hold the velocities with gravity and the
-/// inertial pose): start, guess, then `iterations` times a solve of colours 0..colours-1
-/// and the multipliers' update; then the velocities. (Sweeping the colours back on every
+/// inertial pose): start, guess, then `iterations` sweeps, each a solve of colours
+/// 0..colours-1 that also updates the multipliers; then the velocities. (Sweeping the colours back on every
 /// other iteration, a symmetric Gauss-Seidel, measured worse: a 20-box column sank 8.4 cm
 /// instead of 8.6 mm.)
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, uint32_t iterations);
+                                uint32_t colours, const tb_block_settings* settings);
 
 #endif
