@@ -44,18 +44,14 @@ newton inertial_part(uint i, tb_gpu_solver_body s, float h)
     return e;
 }
 
-// Row u of a point at lever arm r (now), sign +1 on body b and -1 on body a. The row turns
-// with the body: its second derivative in the rotation, (u r^T + r u^T) / 2 - (u.r) I, times
-// the force, is the geometric stiffness; its column lengths on the diagonal keep the
-// Hessian positive (Newton then cannot overshoot a turn under a large force).
+// Row u of a point at lever arm r (at the step's start), sign +1 on body b and -1 on body a:
+// the rows are linear in the motion (block_rows), so this Jacobian is exact and the Hessian
+// needs no geometric stiffness.
 void add_row(inout newton e, vec3 u, vec3 r, float sign, float f, float k)
 {
     vec3 jl = sign * u, ja = sign * cross(r, u);
     e.gl -= f * jl;
     e.ga -= f * ja;
-    mat3 curve = 0.5 * (outerProduct(u, r) + outerProduct(r, u)) - dot(u, r) * mat3(1.0);
-    vec3 g = abs(f) * vec3(length(curve[0]), length(curve[1]), length(curve[2]));
-    e.D += mat3(g.x, 0.0, 0.0, 0.0, g.y, 0.0, 0.0, 0.0, g.z);
     e.A += k * outerProduct(jl, jl);
     e.B += k * outerProduct(jl, ja);
     e.D += k * outerProduct(ja, ja);
@@ -79,7 +75,7 @@ void add_contact(inout newton e, uint entry, tb_gpu_solver_body me)
         float stiffness = c.p[k].mass.w;
         bvec3 on;
         vec3 f = block_forces(manifolds[p].impulse[k].xyz / h, stiffness, C, c.tangent1.w, on);
-        vec3 r = quat_rotate(me.delta_rotation, is_b ? c.p[k].rb.xyz : c.p[k].ra.xyz);
+        vec3 r = is_b ? c.p[k].rb.xyz : c.p[k].ra.xyz;
         add_row(e, n, r, sign, f.x, stiffness);
         add_row(e, c.tangent1.xyz, r, sign, f.y, stiffness);
         add_row(e, c.tangent2.xyz, r, sign, f.z, stiffness);
