@@ -3,7 +3,7 @@
  * EXPERIMENTAL, not the default and not in the public API: a world uses it only when the
  * environment variable TUMBLE_SOLVER=block is set at its creation (TUMBLE_BLOCK overrides
  * its settings) while it is being measured against the soft step. It has no restitution
- * yet (bodies land dead), and its contact events carry the normal impulse only.
+ * yet (bodies land dead).
  *
  * Instead of the soft step's constraints coloured and solved one at a time, it colours the
  * dynamic bodies (no two touching bodies share a colour) and moves each body in turn to

@@ -12,7 +12,7 @@ static uint32_t unpack(const tb_world* w, const tb_gpu_manifold* m, const tb_gpu
     tb_vec3 n = { m->normal.x, m->normal.y, m->normal.z };
     tb_vec3 t1 = { c->tangent1.x, c->tangent1.y, c->tangent1.z };
     tb_vec3 t2 = { c->tangent2.x, c->tangent2.y, c->tangent2.z };
-    float substeps = (float)w->substeps;
+    float substeps = (float)tb_world_substeps(w);
     for (uint32_t k = 0; k < points && k < room; k++) {
         const tb_gpu_vec4* p = &m->point[k];
         const tb_gpu_vec4* j = &m->impulse[k];

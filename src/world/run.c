@@ -19,7 +19,7 @@ static void write_params(tb_world* w, float dt)
     uint32_t x = groups < max_x ? groups : max_x;
     tb_gpu_params* p = &w->params;
     p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
-    uint32_t substeps = w->block_solver ? 1 : w->substeps;
+    uint32_t substeps = tb_world_substeps(w);
     p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, substeps, w->body_set_version };
     p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };

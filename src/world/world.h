@@ -123,6 +123,12 @@ struct tb_world {
     double gpu_ms;
 };
 
+/// Substeps the step runs: the world's, or 1 for the block solver (one step, many sweeps).
+static inline uint32_t tb_world_substeps(const tb_world* w)
+{
+    return w->block_solver ? 1 : w->substeps;
+}
+
 /* world.c */
 /// A world for a checked def and a resolved broadphase, with extra device options
 /// (extensions) for Vulkan embedders. `early` holds the log sink (and any error).
