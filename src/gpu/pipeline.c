@@ -231,6 +231,31 @@ void tb_pipeline_destroy(tb_pipelines* p, VkPipeline pipeline)
     vkDestroyPipeline(p->gpu->device, pipeline, NULL);
 }
 
+static VkPipeline* slot_in(void* owner, const tb_pipeline_slot* slot)
+{
+    return (VkPipeline*)((char*)owner + slot->field);
+}
+
+tb_result tb_pipeline_create_slots(tb_pipelines* p, const tb_pipeline_slot* slots, size_t count,
+                                   void* owner)
+{
+    tb_result r = TB_OK;
+    for (size_t k = 0; k < count && !r; k++)
+        r = tb_pipeline_create(p, slots[k].shader, slots[k].workgroup, slot_in(owner, &slots[k]));
+    if (r) tb_pipeline_destroy_slots(p, slots, count, owner);
+    return r;
+}
+
+void tb_pipeline_destroy_slots(tb_pipelines* p, const tb_pipeline_slot* slots, size_t count,
+                               void* owner)
+{
+    for (size_t k = 0; k < count; k++) {
+        VkPipeline* pipeline = slot_in(owner, &slots[k]);
+        tb_pipeline_destroy(p, *pipeline);
+        *pipeline = VK_NULL_HANDLE;
+    }
+}
+
 tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint32_t* code,
                                   size_t size, uint32_t workgroup_size, VkPipeline* out)
 {

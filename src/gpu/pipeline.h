@@ -62,6 +62,20 @@ tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint3
 /// Destroy a pipeline made by the functions above (VK_NULL_HANDLE: nothing).
 void tb_pipeline_destroy(tb_pipelines* p, VkPipeline pipeline);
 
+/// A stage's kernel as its owner lists them: the shader, its workgroup size, and where in
+/// the owner's struct the pipeline goes (offsetof).
+typedef struct tb_pipeline_slot {
+    const char* shader;
+    uint32_t workgroup;
+    size_t field;
+} tb_pipeline_slot;
+/// Build the pipeline of each of `count` slots into `owner`; on failure destroys those built.
+tb_result tb_pipeline_create_slots(tb_pipelines* p, const tb_pipeline_slot* slots, size_t count,
+                                   void* owner);
+/// Destroy the pipelines of each slot in `owner` (VK_NULL_HANDLE ones: nothing).
+void tb_pipeline_destroy_slots(tb_pipelines* p, const tb_pipeline_slot* slots, size_t count,
+                               void* owner);
+
 /* reload.c: shader hot-reload (DESIGN.md §5) */
 /// Compile shaders from GLSL under `dir` from now on (NULL: stop watching; the pipelines in
 /// use stay): every pipeline of an embedded shader is built again from it and the files

@@ -16,7 +16,7 @@ tb_block_settings tb_block_default_settings(void)
     return s;
 }
 
-static const struct { const char* shader; uint32_t workgroup; size_t field; } kernels[] = {
+static const tb_pipeline_slot kernels[] = {
     { "block/reset", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, reset) },
     { "block/count", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, count) },
     { "block/fill", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, fill) },
@@ -31,27 +31,18 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
-static VkPipeline* pipeline_at(tb_block_solver* s, size_t field)
-{
-    return (VkPipeline*)((char*)s + field);
-}
-
 tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines)
 {
     memset(s, 0, sizeof *s);
-    s->pipelines = pipelines;
-    tb_result r = TB_OK;
-    for (size_t k = 0; k < KERNEL_COUNT && !r; k++)
-        r = tb_pipeline_create(pipelines, kernels[k].shader, kernels[k].workgroup,
-                               pipeline_at(s, kernels[k].field));
-    if (r) tb_block_destroy(s);
+    tb_result r = tb_pipeline_create_slots(pipelines, kernels, KERNEL_COUNT, s);
+    if (!r) s->pipelines = pipelines;
     return r;
 }
 
 void tb_block_destroy(tb_block_solver* s)
 {
     if (!s->pipelines) return;
-    for (size_t k = 0; k < KERNEL_COUNT; k++) tb_pipeline_destroy(s->pipelines, *pipeline_at(s, kernels[k].field));
+    tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
     memset(s, 0, sizeof *s);
 }
 

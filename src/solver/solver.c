@@ -8,7 +8,7 @@
 
 /* Workgroup sizes: per-pair passes match counters.pair_dispatch, colour_finish has one thread
  * per colour, solve matches counters.colour_dispatch, the tail is one thread. */
-static const struct { const char* shader; uint32_t workgroup; size_t field; } kernels[] = {
+static const tb_pipeline_slot kernels[] = {
     { "solver/colour_claim", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_claim) },
     { "solver/colour_decide", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_decide) },
     { "solver/colour_finish", TB_MAX_COLOURS, offsetof(tb_solver, colour_finish) },
@@ -22,30 +22,18 @@ static const struct { const char* shader; uint32_t workgroup; size_t field; } ke
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
-static VkPipeline* pipeline_at(tb_solver* s, size_t field)
-{
-    return (VkPipeline*)((char*)s + field);
-}
-
 tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines)
 {
     memset(s, 0, sizeof *s);
-    s->pipelines = pipelines;
-    tb_result r = TB_OK;
-    for (size_t k = 0; k < KERNEL_COUNT && !r; k++)
-        r = tb_pipeline_create(pipelines, kernels[k].shader, kernels[k].workgroup,
-                               pipeline_at(s, kernels[k].field));
-    if (r) tb_solver_destroy(s);
+    tb_result r = tb_pipeline_create_slots(pipelines, kernels, KERNEL_COUNT, s);
+    if (!r) s->pipelines = pipelines;
     return r;
 }
 
 void tb_solver_destroy(tb_solver* s)
 {
     if (!s->pipelines) return;
-    for (size_t k = 0; k < KERNEL_COUNT; k++) {
-        VkPipeline* p = pipeline_at(s, kernels[k].field);
-        tb_pipeline_destroy(s->pipelines, *p);
-    }
+    tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
     memset(s, 0, sizeof *s);
 }
 
