@@ -107,8 +107,6 @@ static void keep_stage(builder* b)
     end_stage(b, "narrowphase/keep");
 }
 
-/* The colouring; when it runs all TB_MAX_COLOURS rounds, also the list of the constraints
- * it may leave to the solver's tail. */
 /* The block solver's contact lists and colouring of bodies, in place of the colouring of
  * constraints. */
 static void block_colour_stage(builder* b)
@@ -126,6 +124,8 @@ static void block_colour_stage(builder* b)
     end_stage(b, "solver/colour");
 }
 
+/* The colouring; when it runs all TB_MAX_COLOURS rounds, also the list of the constraints
+ * it may leave to the solver's tail. */
 static void colour_stage(builder* b)
 {
     tb_world* w = b->w;

@@ -53,7 +53,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
                             w->store.capacity, pairs);   /* clamped to the device's limit */
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
-    if (!r) r = tb_block_init(&w->block, &w->pipelines);
+    if (!r && w->block_solver) r = tb_block_init(&w->block, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_world_plugins_init(w);
     w->bp.kit = w->kit;
