@@ -19,6 +19,19 @@ static tb_world* block_world(void)
     return w;
 }
 
+/* Scene `name` with n bodies (its seed `seed`) built in w; its instance, and its bodies in
+ * *ids and *count. */
+static scene_instance* build_scene(tb_world* w, const scene* sc, uint32_t n, uint32_t seed,
+                                   const tb_body_id** ids, uint32_t* count)
+{
+    assert_non_null(sc);
+    scene_params params = { n, seed };
+    scene_instance* inst = NULL;
+    th_assert_ok(sc->build(w, &params, &inst));
+    *ids = scene_body_ids(inst, count);
+    return inst;
+}
+
 /* A column of 20 unit boxes at rest on the floor: no box moves 5 mm from its start in 1000
  * steps, the issue's bound (hard contacts do not sag under the load above them). */
 static void test_column_of_20_holds(void** state)
@@ -26,12 +39,9 @@ static void test_column_of_20_holds(void** state)
     (void)state;
     tb_world* w = block_world();
     const scene* sc = scene_find("stack");
-    assert_non_null(sc);
-    scene_params params = { 20, 1 };
-    scene_instance* inst = NULL;
-    th_assert_ok(sc->build(w, &params, &inst));
+    const tb_body_id* ids;
     uint32_t count;
-    const tb_body_id* ids = scene_body_ids(inst, &count);
+    scene_instance* inst = build_scene(w, sc, 20, 1, &ids, &count);
     assert_int_equal(count, 20);
     tb_vec3 x0[20], x[20];
     tb_quat q[20];
@@ -89,12 +99,9 @@ static void test_repeatable(void** state)
     for (int run = 0; run < 2; run++) {
         tb_world* w = block_world();
         const scene* sc = scene_find("boxes");
-        assert_non_null(sc);
-        scene_params params = { 64, 7 };
-        scene_instance* inst = NULL;
-        th_assert_ok(sc->build(w, &params, &inst));
+        const tb_body_id* ids;
         uint32_t count;
-        const tb_body_id* ids = scene_body_ids(inst, &count);
+        scene_instance* inst = build_scene(w, sc, 64, 7, &ids, &count);
         assert_true(count >= 64);
         th_assert_ok(tb_world_step_n(w, sc->dt, 90));
         tb_quat q[64];
