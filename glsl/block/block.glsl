@@ -18,6 +18,11 @@
 #include "world.glsl"
 #include "quat.glsl"
 
+// Invocations that share a body in a sweep (solve.comp): 8, or the subgroup when it is
+// narrower (lavapipe at 128-bit vectors: 4). Four or more, so the four points of an entry
+// are in one pass of neighbouring lanes.
+const uint BLOCK_LANES = SUBGROUP_SIZE < 8u ? SUBGROUP_SIZE : 8u;
+
 bool block_dynamic(uint i)
 {
     return body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC);
@@ -47,38 +52,71 @@ vec4 quat_of_rotation_vector(vec3 v)
     return vec4(v * (sin(0.5 * angle) / angle), cos(0.5 * angle));
 }
 
-// How far the point at lever arm r (world, at the step's start) has moved with its body,
-// to first order in the turn: the rows are linear in the motion, with the Jacobian the solve
-// uses. (The exact turn, quat_rotate(dq, r) - r, bends the normal row by |r| (1 - cos angle):
-// a sphere spinning 18 rad/s then seems to leave its neighbour by 2 cm a step and sinks into
-// it, though a sphere's surface does not move as it spins.)
-vec3 moved_by(vec3 dp, vec4 dq, vec3 r)
+// One contact point as a sweep sees it: what the rows and forces of glsl/block/ need of
+// the manifold (normal, multipliers, slip) and of the constraint solver/prepare wrote (lever
+// arms, friction directions, effective mass), loaded field by field so a sweep reads no more
+// of the 224-byte constraint than the point's share.
+struct block_point {
+    vec3 n, t1, t2;   // the normal (a to b) and the friction directions
+    vec3 ra, rb;      // lever arms on a and b at the step's start
+    float separation; // adjusted separation (constraint rb.w)
+    float friction;
+    float stiffness;  // N/m (constraint mass.w)
+    float unit;       // effective mass over dt^2: the stiffness unit
+    vec3 lambda;      // multipliers: the forces the point holds (N)
+    vec2 slip;        // static friction's slip since the point began to stick (m)
+};
+
+float block_h()
 {
-    return dp + cross(rotation_vector(dq), r);
+    return params.soft.w;
 }
 
-// Point k's static friction slip, carried from step to step (tb_gpu_manifold.slip).
+// Point k's static friction slip, carried from step to step (tb_gpu_manifold.slip); read
+// only while anchored friction is on.
 vec2 block_slip(uint p, uint k)
 {
+    if (params.block_more.y == 0.0) return vec2(0.0);
     vec4 s = manifolds[p].slip[k >> 1];
     return (k & 1u) == 0u ? s.xy : s.zw;
 }
 
-// The rows of point k of pair p whose bodies moved by (dpa, dqa) and (dpb, dqb). A
-// penetration the step began with counts only in part (params.block_more.x of it is left
-// to later steps), so deep contacts are pushed apart gently. The friction rows count from
-// where the point began to stick, so a load on a slope cannot creep a little every step.
-vec3 block_rows(tb_gpu_constraint c, vec3 n, uint p, uint k, vec3 dpa, vec4 dqa, vec3 dpb,
-                vec4 dqb)
+block_point block_load(uint p, uint k)
 {
-    vec3 ra = c.p[k].ra.xyz, rb = c.p[k].rb.xyz;
-    vec3 d = moved_by(dpb, dqb, rb) - moved_by(dpa, dqa, ra);
-    float s = c.p[k].rb.w + dot(rb - ra, n);
-    if (s < 0.0) s *= 1.0 - params.block_more.x;
-    vec2 slip = block_slip(p, k) * params.block_more.y;
-    return vec3(s + dot(d, n), slip.x + dot(d, c.tangent1.xyz), slip.y + dot(d, c.tangent2.xyz));
+    block_point q;
+    float h = block_h();
+    q.n = manifolds[p].normal.xyz;
+    vec4 t1 = constraints[p].tangent1;
+    q.t1 = t1.xyz;
+    q.friction = t1.w;
+    q.t2 = constraints[p].tangent2.xyz;
+    vec4 ra = constraints[p].p[k].ra, rb = constraints[p].p[k].rb;
+    q.ra = ra.xyz;
+    q.rb = rb.xyz;
+    q.unit = ra.w / (h * h);
+    q.separation = rb.w;
+    q.stiffness = constraints[p].p[k].mass.w;
+    q.lambda = manifolds[p].impulse[k].xyz / h;
+    q.slip = block_slip(p, k);
+    return q;
 }
 
+// The rows of point q whose bodies moved by (dpa, turn va) and (dpb, vb), turns as rotation
+// vectors. The rows are linear in the motion (the turn enters to first order, with the
+// Jacobian the solve uses). (The exact turn, quat_rotate(dq, r) - r, bends the normal row by
+// |r| (1 - cos angle): a sphere spinning 18 rad/s then seems to leave its neighbour by 2 cm a
+// step and sinks into it, though a sphere's surface does not move as it spins.) A
+// penetration the step began with counts only in part (params.block_more.x of it is left to
+// later steps), so deep contacts are pushed apart gently. The friction rows count from where
+// the point began to stick while anchored friction is on.
+vec3 block_rows(block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+{
+    vec3 d = (dpb + cross(vb, q.rb)) - (dpa + cross(va, q.ra));
+    float s = q.separation + dot(q.rb - q.ra, q.n);
+    if (s < 0.0) s *= 1.0 - params.block_more.x;
+    vec2 slip = q.slip * params.block_more.y;
+    return vec3(s + dot(d, q.n), slip.x + dot(d, q.t1), slip.y + dot(d, q.t2));
+}
 
 // The forces of a point with multipliers lambda and stiffness k at rows C; `on` says
 // which rows are on their constraint (not apart, not sliding): only those grow stiffer.
@@ -93,56 +131,39 @@ vec3 block_forces(vec3 lambda, float k, vec3 C, float friction, out bvec3 on)
     return vec3(fn, ft);
 }
 
-// Step length, and effective mass over dt^2: the stiffness unit of a contact.
-float block_h()
-{
-    return params.soft.w;
-}
-
+// Effective mass over dt^2: the stiffness unit of point k of constraint c.
 float block_stiffness_unit(tb_gpu_constraint c, uint k)
 {
     float h = block_h();
     return c.p[k].ra.w / (h * h);
 }
 
-// The multipliers' update of pair p from where its bodies are now, once a sweep has moved
-// both (solve.comp runs it from the later of the two): the multipliers take the forces the
-// rows now have (lambda <- f), and a point still in contact stiffens by params.block.y (per
-// metre of its normal error, in units of its effective mass over dt^2) up to params.block.z;
-// the pair's stiffest point is kept for the next step (axis.w). The impulses' w is the
-// step's normal impulse so far (f_n dt). After the last sweep (`last`) each point keeps, for
-// the next step, its tangential slip while it sticks (none once it slides).
-void block_dual(uint p, bool last)
+// The multipliers' update of point k of pair p (q, loaded before the sweep moved its
+// bodies) from where its bodies are now, once a sweep has moved both (solve.comp runs it from
+// the later of the two): the multipliers take the forces the rows now have (lambda <- f),
+// and a point still in contact stiffens by params.block.y (per metre of its normal error, in
+// units of its effective mass over dt^2) up to params.block.z. The impulses' w is the step's
+// normal impulse so far (f_n dt). After the last sweep (`last`) the point keeps, for the next
+// step, its tangential slip while it sticks (none once it slides). Returns the point's
+// stiffness in its unit (the pair keeps its stiffest for the next step, axis.w).
+float block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
 {
-    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-    if (count == 0u) return;
-    uvec2 ab = pairs[pair_half_base() + p].xy;
-    tb_gpu_solver_body a = solver_bodies[ab.x], b = solver_bodies[ab.y];
-    tb_gpu_constraint c = constraints[p];
-    vec3 n = manifolds[p].normal.xyz;
-    float h = block_h(), stiffest = 0.0;
-    vec2 slip[TB_MAX_MANIFOLD_POINTS];
-    for (uint k = 0u; k < uint(TB_MAX_MANIFOLD_POINTS); k++) slip[k] = vec2(0.0);
-    for (uint k = 0u; k < count; k++) {
-        vec3 C = block_rows(c, n, p, k, a.delta_position.xyz, a.delta_rotation,
-                            b.delta_position.xyz, b.delta_rotation);
-        float stiffness = c.p[k].mass.w;
-        bvec3 on;
-        vec3 f = block_forces(manifolds[p].impulse[k].xyz / h, stiffness, C, c.tangent1.w, on);
-        manifolds[p].impulse[k] = vec4(f * h, f.x * h);
-        float unit = block_stiffness_unit(c, k);
-        if (on.x) {
-            stiffness = min(stiffness + params.block.y * unit * abs(C.x), params.block.z * unit);
-            constraints[p].p[k].mass.w = stiffness;
-        }
-        if (unit > 0.0) stiffest = max(stiffest, stiffness / unit);
-        if (last) slip[k] = on.y ? C.yz : vec2(0.0);
+    float h = block_h();
+    vec3 C = block_rows(q, dpa, va, dpb, vb);
+    bvec3 on;
+    vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
+    manifolds[p].impulse[k] = vec4(f * h, f.x * h);
+    float stiffness = q.stiffness;
+    if (on.x) {
+        stiffness = min(stiffness + params.block.y * q.unit * abs(C.x), params.block.z * q.unit);
+        constraints[p].p[k].mass.w = stiffness;
     }
     if (last) {
-        manifolds[p].slip[0] = vec4(slip[0], slip[1]);
-        manifolds[p].slip[1] = vec4(slip[2], slip[3]);
+        vec2 slip = on.y ? C.yz : vec2(0.0);
+        if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = slip;
+        else manifolds[p].slip[k >> 1].zw = slip;
     }
-    manifolds[p].axis.w = floatBitsToUint(stiffest);
+    return q.unit > 0.0 ? stiffness / q.unit : 0.0;
 }
 
 #endif

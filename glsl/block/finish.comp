@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // After the count of the bodies of each colour, one workgroup: colour[c].y = first index of
 // colour c in block_list, colour[c].w = 0 (the fill's cursor), colour_dispatch[c] covering
-// colour[c].x bodies in workgroups of TB_SOLVER_WORKGROUP_SIZE; solver.x = the colours in use
-// (the highest + 1). A body left uncoloured, or coloured beyond the colours the host recorded
+// colour[c].x bodies, BLOCK_LANES threads each, in workgroups of TB_SOLVER_WORKGROUP_SIZE;
+// solver.x = the colours in use (the highest + 1). A body left uncoloured, or coloured beyond the colours the host recorded
 // sweeps for (params.capacity.z), abandons the step (TB_ABORT_COLOURS): the host records more
 // rounds and runs it again.
 #include "block.glsl"
@@ -18,7 +18,8 @@ void main()
         for (uint k = 0u; k < c; k++) first += counters.colour[k].x;
         counters.colour[c].y = first;
         counters.colour[c].w = 0u;
-        counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x, TB_SOLVER_WORKGROUP_SIZE);
+        counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x * BLOCK_LANES,
+                                                        TB_SOLVER_WORKGROUP_SIZE);
     }
     if (gl_LocalInvocationID.x != 0u) return;
     uint used = 0u;

@@ -1,8 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_shuffle : require
 // The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y = 1
-// in the last sweep of the step): thread t <
-// counters.colour[c].x moves body block_list[colour[c].y + t] by one Newton step on
+// in the last sweep of the step): body block_list[colour[c].y + b], b < counters.colour[c].x,
+// moves by one Newton step on
 //     E(x) = |x - y|^2_M / (2 dt^2) + sum over its contacts of the rows' energies,
 // y the inertial pose (where its velocity after gravity would take it), with the other
 // bodies held where they are. Gradient and Hessian are 6x6 (position, rotation vector),
@@ -10,6 +12,13 @@
 // clamped (a contact apart, a point sliding): without it, a contact whose force has just
 // dropped to zero lets the Newton step jump through it, and a body landing on the floor
 // sinks into it with the multiplier swinging between nothing and many times its weight.
+//
+// BLOCK_LANES neighbouring invocations of a subgroup share a body: lane j takes the contact
+// points j, j + BLOCK_LANES, ... of the body's list (point k of entry e is item 4 e + k), sums
+// their rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends
+// with the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
+// A body's points are spread over many threads instead of one thread walking them all: a
+// colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
 #include "block.glsl"
 #include "../integrate/motion.glsl"
 
@@ -30,18 +39,27 @@ mat3 world_inertia(uint i)
     return r * mat3(d.x, 0.0, 0.0, 0.0, d.y, 0.0, 0.0, 0.0, d.z) * transpose(r);
 }
 
-newton inertial_part(uint i, tb_gpu_solver_body s, float h)
+newton no_newton()
 {
     newton e;
-    float m = 1.0 / s.linear.w, scale = 1.0 / (h * h);
-    e.A = mat3(m * scale);
+    e.A = mat3(0.0);
     e.B = mat3(0.0);
-    e.D = world_inertia(i) * scale;
-    e.gl = m * scale * (s.delta_position.xyz - h * s.linear.xyz);
+    e.D = mat3(0.0);
+    e.gl = vec3(0.0);
+    e.ga = vec3(0.0);
+    return e;
+}
+
+void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
+{
+    float m = 1.0 / s.linear.w, scale = 1.0 / (h * h);
+    mat3 D = world_inertia(i) * scale;
+    e.A += mat3(m * scale);
+    e.D += D;
+    e.gl += m * scale * (s.delta_position.xyz - h * s.linear.xyz);
     vec4 target = rotation_of(s.angular.xyz, h, params.limits.x);
     vec4 off = quat_mul(s.delta_rotation, vec4(-target.xyz, target.w));
-    e.ga = e.D * rotation_vector(off);
-    return e;
+    e.ga += D * rotation_vector(off);
 }
 
 // Row u of a point at lever arm r (at the step's start), sign +1 on body b and -1 on body a:
@@ -57,58 +75,118 @@ void add_row(inout newton e, vec3 u, vec3 r, float sign, float f, float k)
     e.D += k * outerProduct(ja, ja);
 }
 
-void add_contact(inout newton e, uint entry, tb_gpu_solver_body me)
+void add_point(inout newton e, block_point q, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
 {
-    uint p = entry & ~TB_BLOCK_SIDE_B;
-    bool is_b = (entry & TB_BLOCK_SIDE_B) != 0u;
-    tb_gpu_solver_body other = solver_bodies[block_other(entry)];
-    tb_gpu_constraint c = constraints[p];
-    vec3 n = manifolds[p].normal.xyz;
-    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-    float h = block_h(), sign = is_b ? 1.0 : -1.0;
-    vec3 dpa = is_b ? other.delta_position.xyz : me.delta_position.xyz;
-    vec3 dpb = is_b ? me.delta_position.xyz : other.delta_position.xyz;
-    vec4 dqa = is_b ? other.delta_rotation : me.delta_rotation;
-    vec4 dqb = is_b ? me.delta_rotation : other.delta_rotation;
-    for (uint k = 0u; k < count; k++) {
-        vec3 C = block_rows(c, n, p, k, dpa, dqa, dpb, dqb);
-        float stiffness = c.p[k].mass.w;
-        bvec3 on;
-        vec3 f = block_forces(manifolds[p].impulse[k].xyz / h, stiffness, C, c.tangent1.w, on);
-        vec3 r = is_b ? c.p[k].rb.xyz : c.p[k].ra.xyz;
-        add_row(e, n, r, sign, f.x, stiffness);
-        add_row(e, c.tangent1.xyz, r, sign, f.y, stiffness);
-        add_row(e, c.tangent2.xyz, r, sign, f.z, stiffness);
-    }
+    vec3 C = block_rows(q, dpa, va, dpb, vb);
+    bvec3 on;
+    vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
+    vec3 r = is_b ? q.rb : q.ra;
+    float sign = is_b ? 1.0 : -1.0;
+    add_row(e, q.n, r, sign, f.x, q.stiffness);
+    add_row(e, q.t1, r, sign, f.y, q.stiffness);
+    add_row(e, q.t2, r, sign, f.z, q.stiffness);
+}
+
+vec3 lanes_sum(vec3 v)
+{
+    for (uint m = BLOCK_LANES >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
+    return v;
+}
+
+mat3 lanes_sum(mat3 a)
+{
+    return mat3(lanes_sum(a[0]), lanes_sum(a[1]), lanes_sum(a[2]));
+}
+
+newton lanes_sum(newton e)
+{
+    e.A = lanes_sum(e.A);
+    e.B = lanes_sum(e.B);
+    e.D = lanes_sum(e.D);
+    e.gl = lanes_sum(e.gl);
+    e.ga = lanes_sum(e.ga);
+    return e;
+}
+
+// The motion (displacement, rotation vector) of body o since the step began.
+void motion_of(uint o, out vec3 dp, out vec3 v)
+{
+    dp = solver_bodies[o].delta_position.xyz;
+    v = rotation_vector(solver_bodies[o].delta_rotation);
 }
 
 void main()
 {
     if (step_aborted()) return;
     uint colour = push.args.x;
-    uint t = pair_thread_index();
-    if (colour >= TB_MAX_COLOURS || t >= counters.colour[colour].x) return;
-    uint i = block_list[counters.colour[colour].y + t];
+    if (colour >= TB_MAX_COLOURS) return;
+    uint thread = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x
+                + gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
+    uint slot = thread / BLOCK_LANES, lane = gl_SubgroupInvocationID % BLOCK_LANES;
+    bool valid = slot < counters.colour[colour].x;
+    uint i = valid ? block_list[counters.colour[colour].y + slot] : 0u;
+    uint first = valid ? block_start[i] : 0u, items = valid ? 4u * block_fill[i] : 0u;
     tb_gpu_solver_body me = solver_bodies[i];
-    newton e = inertial_part(i, me, block_h());
-    uint first = block_start[i], n = block_fill[i];
-    for (uint k = 0u; k < n; k++) add_contact(e, block_entries[first + k], me);
+    vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
+    newton e = no_newton();
+    for (uint at = 0u; at < items; at += BLOCK_LANES) {
+        uint item = at + lane;
+        if (item >= items) continue;
+        uint entry = block_entries[first + (item >> 2)], p = entry & ~TB_BLOCK_SIDE_B, k = item & 3u;
+        if (k >= min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS))) continue;
+        bool is_b = (entry & TB_BLOCK_SIDE_B) != 0u;
+        vec3 dp, v;
+        motion_of(block_other(entry), dp, v);
+        block_point q = block_load(p, k);
+        if (is_b) add_point(e, q, true, dp, v, my_dp, my_v);
+        else add_point(e, q, false, my_dp, my_v, dp, v);
+    }
+    e = lanes_sum(e);
+    if (!valid) return;
+    add_inertia(e, i, me, block_h());
     // [A B; B^T D] [x; y] = [gl; ga] by the Schur complement of A.
     mat3 Ai = inverse(e.A), Bt = transpose(e.B);
     mat3 S = e.D - Bt * Ai * e.B;
     vec3 y = inverse(S) * (e.ga - Bt * (Ai * e.gl));
     vec3 x = Ai * (e.gl - e.B * y);
-    solver_bodies[i].delta_position.xyz = me.delta_position.xyz - x;
-    solver_bodies[i].delta_rotation = normalize(quat_mul(quat_of_rotation_vector(-y),
-                                                         me.delta_rotation));
+    my_dp = me.delta_position.xyz - x;
+    vec4 my_dq = normalize(quat_mul(quat_of_rotation_vector(-y), me.delta_rotation));
+    if (lane == 0u) {
+        solver_bodies[i].delta_position.xyz = my_dp;
+        solver_bodies[i].delta_rotation = my_dq;
+    }
+    my_v = rotation_vector(my_dq);
     // The multipliers of the contacts whose other body has already moved in this sweep (a
     // static one, or one of an earlier colour) are updated here, by the last of their bodies
     // to move: both are where the sweep leaves them, so this is the update a pass of its own
-    // after the sweep would make (bit for bit), without that pass's dispatch and reads.
-    for (uint k = 0u; k < n; k++) {
-        uint entry = block_entries[first + k];
-        uint word = body_colour[block_other(entry)];
-        if (word == TB_BLOCK_NOT_SOLVED || (word & 0xffu) < colour)
-            block_dual(entry & ~TB_BLOCK_SIDE_B, push.args.y != 0u);
+    // after the sweep would make, without that pass's dispatch and reads. The four lanes of
+    // an entry's points then agree on the pair's stiffest point.
+    bool last = push.args.y != 0u;
+    for (uint at = 0u; at < items; at += BLOCK_LANES) {
+        uint item = at + lane;
+        float stiffest = 0.0;
+        uint p = 0u;
+        bool update = false;
+        if (item < items) {
+            uint entry = block_entries[first + (item >> 2)], k = item & 3u, o = block_other(entry);
+            uint word = body_colour[o];
+            p = entry & ~TB_BLOCK_SIDE_B;
+            update = word == TB_BLOCK_NOT_SOLVED || (word & 0xffu) < colour;
+            if (update && k < min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS))) {
+                vec3 dp, v;
+                motion_of(o, dp, v);
+                block_point q = block_load(p, k);
+                if ((entry & TB_BLOCK_SIDE_B) != 0u)
+                    stiffest = block_dual(p, k, q, dp, v, my_dp, my_v, last);
+                else
+                    stiffest = block_dual(p, k, q, my_dp, my_v, dp, v, last);
+            } else if (update && last) {
+                if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = vec2(0.0);
+                else manifolds[p].slip[k >> 1].zw = vec2(0.0);
+            }
+        }
+        stiffest = max(stiffest, subgroupShuffleXor(stiffest, 1u));
+        stiffest = max(stiffest, subgroupShuffleXor(stiffest, 2u));
+        if (update && (item & 3u) == 0u) manifolds[p].axis.w = floatBitsToUint(stiffest);
     }
 }
