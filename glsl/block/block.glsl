@@ -28,11 +28,39 @@ bool block_dynamic(uint i)
     return body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC);
 }
 
+// An entry of a body's contact list is one contact point: its pair, its point, and which
+// end of the pair the body is.
+uint block_entry(uint p, uint k, bool is_b)
+{
+    return (p << 2) | k | (is_b ? TB_BLOCK_SIDE_B : 0u);
+}
+
+uint block_pair(uint e)
+{
+    return (e & ~TB_BLOCK_SIDE_B) >> 2;
+}
+
+uint block_point_of(uint e)
+{
+    return e & 3u;
+}
+
+bool block_is_b(uint e)
+{
+    return (e & TB_BLOCK_SIDE_B) != 0u;
+}
+
 // The body at the other end of entry e of a contact list.
 uint block_other(uint e)
 {
-    uvec2 ab = pairs[pair_half_base() + (e & ~TB_BLOCK_SIDE_B)].xy;
-    return (e & TB_BLOCK_SIDE_B) != 0u ? ab.x : ab.y;
+    uvec2 ab = pairs[pair_half_base() + block_pair(e)].xy;
+    return block_is_b(e) ? ab.x : ab.y;
+}
+
+// Points of pair p.
+uint block_points(uint p)
+{
+    return min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
 }
 
 // The angle times the axis of unit quaternion q (q and -q alike).
@@ -144,9 +172,10 @@ float block_stiffness_unit(tb_gpu_constraint c, uint k)
 // and a point still in contact stiffens by params.block.y (per metre of its normal error, in
 // units of its effective mass over dt^2) up to params.block.z. The impulses' w is the step's
 // normal impulse so far (f_n dt). After the last sweep (`last`) the point keeps, for the next
-// step, its tangential slip while it sticks (none once it slides). Returns the point's
-// stiffness in its unit (the pair keeps its stiffest for the next step, axis.w).
-float block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
+// step, its tangential slip while it sticks (none once it slides). The pair keeps its
+// stiffest point's stiffness, in its unit, for the next step (axis.w: start.comp zeroed it,
+// and stiffnesses only grow in a step, so the largest seen is the last).
+void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
 {
     float h = block_h();
     vec3 C = block_rows(q, dpa, va, dpb, vb);
@@ -163,7 +192,7 @@ float block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec
         if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = slip;
         else manifolds[p].slip[k >> 1].zw = slip;
     }
-    return q.unit > 0.0 ? stiffness / q.unit : 0.0;
+    if (q.unit > 0.0) atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
 }
 
 #endif

@@ -36,7 +36,9 @@ void main()
     uvec2 taken = uvec2(0u);
     uint first = block_start[i], n = block_fill[i];
     for (uint k = 0u; k < n; k++) {
-        uint o = block_other(block_entries[first + k]);
+        uint entry = block_entries[first + k];
+        if (block_point_of(entry) != 0u) continue;   // one look per pair
+        uint o = block_other(entry);
         uint word = body_colour[o];
         if (word == TB_BLOCK_NOT_SOLVED) continue;
         if (word == TB_BLOCK_NO_COLOUR || (word >> 8) == round) {

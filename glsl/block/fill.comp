@@ -1,20 +1,22 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Per pair: the contact goes into the lists of its dynamic bodies (block_sort then puts
-// each list in pair order, whatever order the atomics gave).
+// Per pair: its points go into the lists of its dynamic bodies, side by side (block_sort
+// then puts each list in entry order, whatever order the atomics gave).
 #include "block.glsl"
 
-void put(uint body, uint entry)
+void put(uint body, uint p, uint count, bool is_b)
 {
-    uint at = atomicAdd(block_fill[body], 1u);
-    block_entries[block_start[body] + at] = entry;
+    uint at = block_start[body] + atomicAdd(block_fill[body], count);
+    for (uint k = 0u; k < count; k++) block_entries[at + k] = block_entry(p, k, is_b);
 }
 
 void main()
 {
     uint p = pair_thread_index();
-    if (p >= counters.state.z || step_aborted() || manifolds[p].info.x == 0u) return;
+    if (p >= counters.state.z || step_aborted()) return;
+    uint count = block_points(p);
+    if (count == 0u) return;
     uvec2 ab = pairs[pair_half_base() + p].xy;
-    if (block_dynamic(ab.x)) put(ab.x, p);
-    if (block_dynamic(ab.y)) put(ab.y, p | TB_BLOCK_SIDE_B);
+    if (block_dynamic(ab.x)) put(ab.x, p, count, false);
+    if (block_dynamic(ab.y)) put(ab.y, p, count, true);
 }

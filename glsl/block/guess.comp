@@ -21,17 +21,11 @@ void main()
     uint first = block_start[i], n = block_fill[i];
     for (uint e = 0u; e < n; e++) {
         uint entry = block_entries[first + e];
-        uint p = entry & ~TB_BLOCK_SIDE_B;
-        bool is_b = (entry & TB_BLOCK_SIDE_B) != 0u;
-        tb_gpu_constraint c = constraints[p];
-        vec3 normal = manifolds[p].normal.xyz;
-        uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-        for (uint k = 0u; k < count; k++) {
-            vec3 l = manifolds[p].impulse[k].xyz / h;
-            vec3 f = normal * l.x + c.tangent1.xyz * l.y + c.tangent2.xyz * l.z;
-            if (!is_b) f = -f;
-            force += f;
-        }
+        uint p = block_pair(entry), k = block_point_of(entry);
+        vec3 l = manifolds[p].impulse[k].xyz / h;
+        vec3 f = manifolds[p].normal.xyz * l.x + constraints[p].tangent1.xyz * l.y
+               + constraints[p].tangent2.xyz * l.z;
+        force += block_is_b(entry) ? f : -f;
     }
     vec3 g = params.gravity.xyz * s.angular.w;
     float weight = length(g);

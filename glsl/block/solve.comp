@@ -14,8 +14,7 @@
 // sinks into it with the multiplier swinging between nothing and many times its weight.
 //
 // BLOCK_LANES neighbouring invocations of a subgroup share a body: lane j takes the contact
-// points j, j + BLOCK_LANES, ... of the body's list (point k of entry e is item 4 e + k), sums
-// their rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends
+// points j, j + BLOCK_LANES, ... of the body's list (an entry per point), sums their rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends
 // with the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
 // A body's points are spread over many threads instead of one thread walking them all: a
 // colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
@@ -115,6 +114,43 @@ void motion_of(uint o, out vec3 dp, out vec3 v)
     v = rotation_vector(solver_bodies[o].delta_rotation);
 }
 
+// Entry `entry` of the body's list as the sweep sees it: the point, the other body and
+// how far that one has moved (it is of another colour, or static: it stays put during the
+// dispatch).
+struct item {
+    uint entry, p, k, other;
+    block_point q;
+    vec3 dp, v;
+};
+
+item item_of(uint entry)
+{
+    item it;
+    it.entry = entry;
+    it.p = block_pair(entry);
+    it.k = block_point_of(entry);
+    it.other = block_other(entry);
+    it.q = block_load(it.p, it.k);
+    motion_of(it.other, it.dp, it.v);
+    return it;
+}
+
+void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
+{
+    if (block_is_b(it.entry)) add_point(e, it.q, true, it.dp, it.v, my_dp, my_v);
+    else add_point(e, it.q, false, my_dp, my_v, it.dp, it.v);
+}
+
+// The multipliers' update of the item's point if its other body has already moved in this
+// sweep (a static one, or one of an earlier colour): both are where the sweep leaves them.
+void update_item(item it, uint colour, vec3 my_dp, vec3 my_v, bool last)
+{
+    uint word = body_colour[it.other];
+    if (word != TB_BLOCK_NOT_SOLVED && (word & 0xffu) >= colour) return;
+    if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
+    else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
+}
+
 void main()
 {
     if (step_aborted()) return;
@@ -125,22 +161,19 @@ void main()
     uint slot = thread / BLOCK_LANES, lane = gl_SubgroupInvocationID % BLOCK_LANES;
     bool valid = slot < counters.colour[colour].x;
     uint i = valid ? block_list[counters.colour[colour].y + slot] : 0u;
-    uint first = valid ? block_start[i] : 0u, items = valid ? 4u * block_fill[i] : 0u;
+    uint first = valid ? block_start[i] : 0u, items = valid ? block_fill[i] : 0u;
     tb_gpu_solver_body me = solver_bodies[i];
     vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
+    // The first pass's points stay in registers for the multipliers' update below.
     newton e = no_newton();
-    for (uint at = 0u; at < items; at += BLOCK_LANES) {
-        uint item = at + lane;
-        if (item >= items) continue;
-        uint entry = block_entries[first + (item >> 2)], p = entry & ~TB_BLOCK_SIDE_B, k = item & 3u;
-        if (k >= min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS))) continue;
-        bool is_b = (entry & TB_BLOCK_SIDE_B) != 0u;
-        vec3 dp, v;
-        motion_of(block_other(entry), dp, v);
-        block_point q = block_load(p, k);
-        if (is_b) add_point(e, q, true, dp, v, my_dp, my_v);
-        else add_point(e, q, false, my_dp, my_v, dp, v);
+    item kept;
+    bool has_kept = lane < items;
+    if (has_kept) {
+        kept = item_of(block_entries[first + lane]);
+        add_item(e, kept, my_dp, my_v);
     }
+    for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
+        add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
     e = lanes_sum(e);
     if (!valid) return;
     add_inertia(e, i, me, block_h());
@@ -156,37 +189,11 @@ void main()
         solver_bodies[i].delta_rotation = my_dq;
     }
     my_v = rotation_vector(my_dq);
-    // The multipliers of the contacts whose other body has already moved in this sweep (a
-    // static one, or one of an earlier colour) are updated here, by the last of their bodies
-    // to move: both are where the sweep leaves them, so this is the update a pass of its own
-    // after the sweep would make, without that pass's dispatch and reads. The four lanes of
-    // an entry's points then agree on the pair's stiffest point.
+    // The multipliers of the contacts whose other body has already moved are updated here,
+    // by the last of their bodies to move, so no pass of its own after the sweep needs a
+    // dispatch and a read of every contact.
     bool last = push.args.y != 0u;
-    for (uint at = 0u; at < items; at += BLOCK_LANES) {
-        uint item = at + lane;
-        float stiffest = 0.0;
-        uint p = 0u;
-        bool update = false;
-        if (item < items) {
-            uint entry = block_entries[first + (item >> 2)], k = item & 3u, o = block_other(entry);
-            uint word = body_colour[o];
-            p = entry & ~TB_BLOCK_SIDE_B;
-            update = word == TB_BLOCK_NOT_SOLVED || (word & 0xffu) < colour;
-            if (update && k < min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS))) {
-                vec3 dp, v;
-                motion_of(o, dp, v);
-                block_point q = block_load(p, k);
-                if ((entry & TB_BLOCK_SIDE_B) != 0u)
-                    stiffest = block_dual(p, k, q, dp, v, my_dp, my_v, last);
-                else
-                    stiffest = block_dual(p, k, q, my_dp, my_v, dp, v, last);
-            } else if (update && last) {
-                if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = vec2(0.0);
-                else manifolds[p].slip[k >> 1].zw = vec2(0.0);
-            }
-        }
-        stiffest = max(stiffest, subgroupShuffleXor(stiffest, 1u));
-        stiffest = max(stiffest, subgroupShuffleXor(stiffest, 2u));
-        if (update && (item & 3u) == 0u) manifolds[p].axis.w = floatBitsToUint(stiffest);
-    }
+    if (has_kept) update_item(kept, colour, my_dp, my_v, last);
+    for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
+        update_item(item_of(block_entries[first + at]), colour, my_dp, my_v, last);
 }

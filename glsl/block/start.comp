@@ -4,7 +4,8 @@
 // params.block.w of the force it ended last step with (the narrowphase carried it over as an
 // impulse) and from the larger of the starting stiffness params.block.x and the share
 // params.block_more.w of the pair's stiffness last step (both in units of its effective mass
-// over dt^2; the narrowphase carries the pair's in axis.w).
+// over dt^2; the narrowphase carries the pair's in axis.w, which the sweeps then raise to the
+// stiffest point's, block_dual).
 #include "block.glsl"
 
 void main()
@@ -15,6 +16,7 @@ void main()
     tb_gpu_constraint c = constraints[p];
     float carried = uintBitsToFloat(manifolds[p].axis.w) * params.block_more.w;
     float stiffness = max(params.block.x, carried);
+    manifolds[p].axis.w = 0u;
     for (uint k = 0u; k < count; k++) {
         vec4 impulse = manifolds[p].impulse[k];
         manifolds[p].impulse[k] = vec4(impulse.xyz * params.block.w, 0.0);
