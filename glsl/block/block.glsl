@@ -50,13 +50,6 @@ bool block_is_b(uint e)
     return (e & TB_BLOCK_SIDE_B) != 0u;
 }
 
-// The body at the other end of entry e of a contact list.
-uint block_other(uint e)
-{
-    uvec2 ab = pairs[pair_half_base() + block_pair(e)].xy;
-    return block_is_b(e) ? ab.x : ab.y;
-}
-
 // Points of pair p.
 uint block_points(uint p)
 {

@@ -11,6 +11,10 @@
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
 
+// Largest degree first: bodies with more contact points (a proxy for more neighbours, read
+// in one load) colour before the others, hashed among equals. Random priorities alone left
+// the most connected bodies for last, when their neighbours had taken many colours (H100: 100k
+// spheres 7 colours -> 6; the deep pile's solve 5.24 -> 4.93 ms).
 uint priority(uint i)
 {
     uint x = i * 0x9e3779b9u;
@@ -18,7 +22,8 @@ uint priority(uint i)
     x *= 0x7feb352du;
     x ^= x >> 15;
     x *= 0x846ca68bu;
-    return x ^ (x >> 16);
+    x ^= x >> 16;
+    return (min(block_fill[i], 255u) << 24) | (x >> 8);
 }
 
 bool beats(uint a, uint pa, uint b)
@@ -36,9 +41,9 @@ void main()
     uvec2 taken = uvec2(0u);
     uint first = block_start[i], n = block_fill[i];
     for (uint k = 0u; k < n; k++) {
-        uint entry = block_entries[first + k];
-        if (block_point_of(entry) != 0u) continue;   // one look per pair
-        uint o = block_other(entry);
+        uvec2 entry = block_entries[first + k];
+        if (block_point_of(entry.x) != 0u) continue;   // one look per pair
+        uint o = entry.y;
         uint word = body_colour[o];
         if (word == TB_BLOCK_NOT_SOLVED) continue;
         if (word == TB_BLOCK_NO_COLOUR || (word >> 8) == round) {

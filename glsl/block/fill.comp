@@ -4,10 +4,10 @@
 // then puts each list in entry order, whatever order the atomics gave).
 #include "block.glsl"
 
-void put(uint body, uint p, uint count, bool is_b)
+void put(uint body, uint other, uint p, uint count, bool is_b)
 {
     uint at = block_start[body] + atomicAdd(block_fill[body], count);
-    for (uint k = 0u; k < count; k++) block_entries[at + k] = block_entry(p, k, is_b);
+    for (uint k = 0u; k < count; k++) block_entries[at + k] = uvec2(block_entry(p, k, is_b), other);
 }
 
 void main()
@@ -17,6 +17,6 @@ void main()
     uint count = block_points(p);
     if (count == 0u) return;
     uvec2 ab = pairs[pair_half_base() + p].xy;
-    if (block_dynamic(ab.x)) put(ab.x, p, count, false);
-    if (block_dynamic(ab.y)) put(ab.y, p, count, true);
+    if (block_dynamic(ab.x)) put(ab.x, ab.y, p, count, false);
+    if (block_dynamic(ab.y)) put(ab.y, ab.x, p, count, true);
 }

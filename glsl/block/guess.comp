@@ -20,7 +20,7 @@ void main()
     vec3 force = vec3(0.0);
     uint first = block_start[i], n = block_fill[i];
     for (uint e = 0u; e < n; e++) {
-        uint entry = block_entries[first + e];
+        uint entry = block_entries[first + e].x;
         uint p = block_pair(entry), k = block_point_of(entry);
         vec3 l = manifolds[p].impulse[k].xyz / h;
         vec3 f = manifolds[p].normal.xyz * l.x + constraints[p].tangent1.xyz * l.y

@@ -123,13 +123,13 @@ struct item {
     vec3 dp, v;
 };
 
-item item_of(uint entry)
+item item_of(uvec2 entry)
 {
     item it;
-    it.entry = entry;
-    it.p = block_pair(entry);
-    it.k = block_point_of(entry);
-    it.other = block_other(entry);
+    it.entry = entry.x;
+    it.p = block_pair(entry.x);
+    it.k = block_point_of(entry.x);
+    it.other = entry.y;
     it.q = block_load(it.p, it.k);
     motion_of(it.other, it.dp, it.v);
     return it;

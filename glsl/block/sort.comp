@@ -10,9 +10,9 @@ void main()
     if (i >= params.counts.x || step_aborted()) return;
     uint first = block_start[i], n = block_fill[i];
     for (uint a = 1u; a < n; a++) {
-        uint e = block_entries[first + a];
+        uvec2 e = block_entries[first + a];
         uint b = a;
-        for (; b > 0u && block_entries[first + b - 1u] > e; b--)
+        for (; b > 0u && block_entries[first + b - 1u].x > e.x; b--)
             block_entries[first + b] = block_entries[first + b - 1u];
         block_entries[first + b] = e;
     }

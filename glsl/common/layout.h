@@ -87,9 +87,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BODY_COLOUR     28 /* uint[]: each dynamic body's colour | the colouring round that
                                       gave it << 8 (TB_BLOCK_NO_COLOUR: none yet) */
 #define TB_BIND_BLOCK_LIST      29 /* uint[]: dynamic bodies grouped by colour (counters.colour) */
-#define TB_BIND_BLOCK_ENTRIES   30 /* uint[8 * pair cap]: one per contact point of each dynamic body,
-                                      pair index << 2 | point | TB_BLOCK_SIDE_B when the body is
-                                      the pair's body b, grouped by body (block_start) */
+#define TB_BIND_BLOCK_ENTRIES   30 /* uvec2[8 * pair cap]: one per contact point of each dynamic body,
+                                      grouped by body (block_start): x pair index << 2 | point |
+                                      TB_BLOCK_SIDE_B when the body is the pair's body b, y the
+                                      body at the pair's other end */
 #define TB_BIND_COUNT           31
 
 /* Specialization constant ids, set for every pipeline. */

@@ -7,6 +7,8 @@
 
 #define MIN_COLOUR_ROUNDS 4u
 #define ROUNDS_SPARE 2u      /* rounds recorded beyond the colours a step used */
+#define BLOCK_ROUNDS_SPARE 1u /* the block solver's: each is a dispatch in every one of its
+                                 many sweeps, where the soft step's colours have batches */
 #define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
 #define MAX_REDO 16
 
@@ -142,8 +144,8 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 {
     uint32_t used = c->solver.x;
     if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
-    uint32_t rounds = used + ROUNDS_SPARE > MIN_COLOUR_ROUNDS ? used + ROUNDS_SPARE
-                                                              : MIN_COLOUR_ROUNDS;
+    uint32_t spare = w->block_solver ? BLOCK_ROUNDS_SPARE : ROUNDS_SPARE;
+    uint32_t rounds = used + spare > MIN_COLOUR_ROUNDS ? used + spare : MIN_COLOUR_ROUNDS;
     if (used + SHRINK_SLACK < w->colour_rounds && rounds < w->colour_rounds) {
         w->colour_rounds = rounds;
         w->step_built = 0;

@@ -55,7 +55,7 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
-    case TB_SIM_BLOCK_ENTRIES: return 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 4;
+    case TB_SIM_BLOCK_ENTRIES: return 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8;
     default: return (VkDeviceSize)capacity * 4;
     }
 }

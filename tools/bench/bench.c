@@ -523,6 +523,11 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
         checks->items[checks->count].key = "dispatches";
         checks->items[checks->count++].value = recorded_dispatches;
     }
+    if (!code && checks->count < SCENE_MAX_CHECKS) {   /* steps run again (a buffer grew, or
+                                                          more colours were needed) */
+        checks->items[checks->count].key = "redone";
+        checks->items[checks->count++].value = (double)st.steps_redone;
+    }
     tr_destroy(frames.renderer);
     sc->destroy(inst);
     return code;
