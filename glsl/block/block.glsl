@@ -165,9 +165,9 @@ float block_stiffness_unit(tb_gpu_constraint c, uint k)
 // and a point still in contact stiffens by params.block.y (per metre of its normal error, in
 // units of its effective mass over dt^2) up to params.block.z. The impulses' w is the step's
 // normal impulse so far (f_n dt). After the last sweep (`last`) the point keeps, for the next
-// step, its tangential slip while it sticks (none once it slides). The pair keeps its
-// stiffest point's stiffness, in its unit, for the next step (axis.w: start.comp zeroed it,
-// and stiffnesses only grow in a step, so the largest seen is the last).
+// step, its tangential slip while it sticks (none once it slides), and the pair keeps its
+// stiffest point's stiffness, in its unit, for the next step (axis.w, which start.comp
+// zeroed: the last sweep updates every point once, and stiffnesses only grow in a step).
 void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
 {
     float h = block_h();
@@ -184,8 +184,8 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
         vec2 slip = on.y ? C.yz : vec2(0.0);
         if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = slip;
         else manifolds[p].slip[k >> 1].zw = slip;
+        if (q.unit > 0.0) atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
     }
-    if (q.unit > 0.0) atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
 }
 
 #endif
