@@ -75,7 +75,11 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  *   manifolds       tb_gpu_manifold[pair cap]: this step's, indexed like its pairs
  *   prev_manifolds  tb_gpu_manifold[pair cap]: last step's, indexed like its pairs (the
  *                   other half); the warm start reads them
- *   constraints     tb_gpu_constraint[pair cap]: solver data of this step */
+ *   constraints     tb_gpu_constraint[pair cap]: solver data of this step
+ *   block_entries   uvec2[8 * pair cap], only in a world that uses the block solver: the
+ *                   contact lists of its dynamic bodies, an entry per contact point, grouped
+ *                   by body (block_start): x pair index << 2 | point | TB_BLOCK_SIDE_B when
+ *                   the body is the pair's body b, y the body at the pair's other end */
 #define TB_BIND_PLUGIN_PARAMS   25 /* vec4[TB_MAX_PLUGINS * TB_PLUGIN_PARAM_VEC4S]: each loaded
                                       plugin's parameter block (abi/tumble_plugin.h), the host's
                                       copy uploaded before a submission when it changed */
@@ -87,11 +91,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BODY_COLOUR     28 /* uint[]: each dynamic body's colour | the colouring round that
                                       gave it << 8 (TB_BLOCK_NO_COLOUR: none yet) */
 #define TB_BIND_BLOCK_LIST      29 /* uint[]: dynamic bodies grouped by colour (counters.colour) */
-#define TB_BIND_BLOCK_ENTRIES   30 /* uvec2[8 * pair cap]: one per contact point of each dynamic body,
-                                      grouped by body (block_start): x pair index << 2 | point |
-                                      TB_BLOCK_SIDE_B when the body is the pair's body b, y the
-                                      body at the pair's other end */
-#define TB_BIND_COUNT           31
+#define TB_BIND_COUNT           30
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
@@ -159,7 +159,8 @@ TB_STRUCT(tb_gpu_params) {
                                z impulse scale, w substep h (s) */
     TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
     TB_UVEC4 contact_arrays[2]; /* device addresses as (low, high) pairs: [0].xy manifolds,
-                                   [0].zw prev_manifolds, [1].xy constraints, [1].zw unused */
+                                   [0].zw prev_manifolds, [1].xy constraints, [1].zw
+                                   block_entries */
     TB_VEC4 block;          /* the block solver's contacts (tb_block_settings): x starting
                                stiffness, y its growth per metre of error, z largest stiffness
                                (all in units of the contact's effective mass / dt^2), w the share

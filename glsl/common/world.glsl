@@ -40,7 +40,6 @@ layout(set = 0, binding = TB_BIND_BLOCK_START, std430) buffer BlockStart { uint 
 layout(set = 0, binding = TB_BIND_BLOCK_FILL, std430) buffer BlockFill { uint block_fill[]; };
 layout(set = 0, binding = TB_BIND_BODY_COLOUR, std430) buffer BodyColour { uint body_colour[]; };
 layout(set = 0, binding = TB_BIND_BLOCK_LIST, std430) buffer BlockList { uint block_list[]; };
-layout(set = 0, binding = TB_BIND_BLOCK_ENTRIES, std430) buffer BlockEntries { uvec2 block_entries[]; };
 
 // The contact arrays live at device addresses (see layout.h); these names read like arrays.
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer ManifoldArray { tb_gpu_manifold v[]; };
@@ -48,6 +47,8 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ConstraintA
 #define manifolds (ManifoldArray(params.contact_arrays[0].xy).v)
 #define prev_manifolds (ManifoldArray(params.contact_arrays[0].zw).v)
 #define constraints (ConstraintArray(params.contact_arrays[1].xy).v)
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer BlockEntryArray { uvec2 v[]; };
+#define block_entries (BlockEntryArray(params.contact_arrays[1].zw).v)
 
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()

@@ -38,7 +38,8 @@ static void write_params(tb_world* w, float dt)
     const tb_buffer* pair = w->sim.pair;
     p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
                                             pair[TB_SIM_PREV_MANIFOLDS].address);
-    p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address, 0);
+    p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address,
+                                            pair[TB_SIM_BLOCK_ENTRIES].address);
 }
 
 /* Record this submission's uploads (params, shapes, dirty bodies) and, with a mask, the

@@ -16,13 +16,14 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
     [TB_SIM_BODY_COLOUR] = TB_BIND_BODY_COLOUR, [TB_SIM_BLOCK_LIST] = TB_BIND_BLOCK_LIST,
 };
 
-/* The contact arrays are reached by address (tb_gpu_params.contact_arrays), not bound. */
+/* The contact arrays and the block solver's lists are reached by address
+ * (tb_gpu_params.contact_arrays), not bound. */
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
     [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_TAIL_SCRATCH] = UINT32_MAX, [TB_SIM_EVENT_MARKS] = UINT32_MAX,
-    [TB_SIM_BLOCK_ENTRIES] = TB_BIND_BLOCK_ENTRIES,
+    [TB_SIM_BLOCK_ENTRIES] = UINT32_MAX,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -55,7 +56,8 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
-    case TB_SIM_BLOCK_ENTRIES: return 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8;
+    case TB_SIM_BLOCK_ENTRIES:
+        return sim->block_lists ? 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8 : 0;
     default: return (VkDeviceSize)capacity * 4;
     }
 }
@@ -184,9 +186,11 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
 }
 
 tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
-                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity)
+                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity,
+                      int block_lists)
 {
     memset(sim, 0, sizeof *sim);
+    sim->block_lists = block_lists;
     sim->memory = memory;
     sim->pipelines = pipelines;
     sim->prims = prims;

@@ -40,10 +40,13 @@ typedef struct tb_sim {
     uint32_t table_bits;          ///< log2(table_size)
     uint32_t pair_capacity;       ///< pairs per half
     uint64_t growths;
+    int block_lists;              ///< the block solver's contact lists are sized (else empty)
 } tb_sim;
 
+/// `block_lists`: the world uses the block solver, which needs TB_SIM_BLOCK_ENTRIES.
 tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,
-                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity);
+                      tb_transfer* t, uint32_t body_capacity, uint64_t pair_capacity,
+                      int block_lists);
 void tb_sim_destroy(tb_sim* sim);
 
 /// Match the body capacity (after the body store grew). Keeps the per-body pair ranges.

@@ -50,8 +50,9 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     uint64_t pairs = def->initial_pair_capacity ? def->initial_pair_capacity
                                                 : 4 * (uint64_t)(w->store.capacity ? w->store.capacity : 1);
     if (!r) r = tb_prims_init(&w->prims, &w->pipelines);
+    /* The pair capacity is clamped to the device's limit. */
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
-                            w->store.capacity, pairs);   /* clamped to the device's limit */
+                            w->store.capacity, pairs, w->block_solver);
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r && w->block_solver) r = tb_block_init(&w->block, &w->pipelines);
     if (!r) r = tb_step_kernels_create(w);
