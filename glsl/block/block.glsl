@@ -98,8 +98,17 @@ float block_h()
 vec2 block_slip(uint p, uint k)
 {
     if (params.block_more.y == 0.0) return vec2(0.0);
-    vec4 s = manifolds[p].slip[k >> 1];
-    return (k & 1u) == 0u ? s.xy : s.zw;
+    return slip_of_point(manifolds[p].slip[k >> 1], k);
+}
+
+// Effective mass over dt^2: the stiffness unit of point k of pair p. (Read as the whole
+// vec4: reading ra.w alone through the address gave NaN bodies on lavapipe, Mesa 22.3,
+// though the SPIR-V's load is the same component at alignment 4; not yet understood.)
+float block_stiffness_unit(uint p, uint k)
+{
+    float h = block_h();
+    vec4 ra = constraints[p].p[k].ra;
+    return ra.w / (h * h);
 }
 
 block_point block_load(uint p, uint k)
@@ -114,7 +123,7 @@ block_point block_load(uint p, uint k)
     vec4 ra = constraints[p].p[k].ra, rb = constraints[p].p[k].rb;
     q.ra = ra.xyz;
     q.rb = rb.xyz;
-    q.unit = ra.w / (h * h);
+    q.unit = block_stiffness_unit(p, k);
     q.separation = rb.w;
     q.stiffness = constraints[p].p[k].mass.w;
     q.lambda = manifolds[p].impulse[k].xyz / h;
@@ -152,13 +161,6 @@ vec3 block_forces(vec3 lambda, float k, vec3 C, float friction, out bvec3 on)
     return vec3(fn, ft);
 }
 
-// Effective mass over dt^2: the stiffness unit of point k of constraint c.
-float block_stiffness_unit(tb_gpu_constraint c, uint k)
-{
-    float h = block_h();
-    return c.p[k].ra.w / (h * h);
-}
-
 // The multipliers' update of point k of pair p (q, loaded before the sweep moved its
 // bodies) from where its bodies are now, once a sweep has moved both (solve.comp runs it from
 // the later of the two): the multipliers take the forces the rows now have (lambda <- f),
@@ -181,9 +183,7 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
         constraints[p].p[k].mass.w = stiffness;
     }
     if (last) {
-        vec2 slip = on.y ? C.yz : vec2(0.0);
-        if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = slip;
-        else manifolds[p].slip[k >> 1].zw = slip;
+        set_manifold_slip(p, k, on.y ? C.yz : vec2(0.0));
         if (q.unit > 0.0) atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
     }
 }

@@ -3,9 +3,9 @@
 // After the count of the bodies of each colour, one workgroup: colour[c].y = first index of
 // colour c in block_list, colour[c].w = 0 (the fill's cursor), colour_dispatch[c] covering
 // colour[c].x bodies, BLOCK_LANES threads each, in workgroups of TB_SOLVER_WORKGROUP_SIZE;
-// solver.x = the colours in use (the highest + 1). A body left uncoloured, or coloured beyond the colours the host recorded
-// sweeps for (params.capacity.z), abandons the step (TB_ABORT_COLOURS): the host records more
-// rounds and runs it again.
+// solver.x = the colours in use (the highest + 1). A body left uncoloured, or coloured
+// beyond the colours the host recorded sweeps for (params.capacity.z), abandons the step
+// (TB_ABORT_COLOURS): the host records more rounds and runs it again.
 #include "block.glsl"
 
 void main()

@@ -14,8 +14,9 @@
 // sinks into it with the multiplier swinging between nothing and many times its weight.
 //
 // BLOCK_LANES neighbouring invocations of a subgroup share a body: lane j takes the contact
-// points j, j + BLOCK_LANES, ... of the body's list (an entry per point), sums their rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends
-// with the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
+// points j, j + BLOCK_LANES, ... of the body's list (an entry per point) and sums their
+// rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends with
+// the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
 // A body's points are spread over many threads instead of one thread walking them all: a
 // colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
 #include "block.glsl"

@@ -12,14 +12,13 @@ void main()
 {
     uint p = pair_thread_index();
     if (p >= counters.state.z || step_aborted()) return;
-    uint count = min(manifolds[p].info.x, uint(TB_MAX_MANIFOLD_POINTS));
-    tb_gpu_constraint c = constraints[p];
+    uint count = block_points(p);
     float carried = uintBitsToFloat(manifolds[p].axis.w) * params.block_more.w;
     float stiffness = max(params.block.x, carried);
     manifolds[p].axis.w = 0u;
     for (uint k = 0u; k < count; k++) {
         vec4 impulse = manifolds[p].impulse[k];
         manifolds[p].impulse[k] = vec4(impulse.xyz * params.block.w, 0.0);
-        constraints[p].p[k].mass.w = stiffness * block_stiffness_unit(c, k);
+        constraints[p].p[k].mass.w = stiffness * block_stiffness_unit(p, k);
     }
 }

@@ -50,6 +50,19 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ConstraintA
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer BlockEntryArray { uvec2 v[]; };
 #define block_entries (BlockEntryArray(params.contact_arrays[1].zw).v)
 
+// Point k's static friction slip (the block solver's) in a manifold's slip array, which
+// holds two points a vec4: slips[k / 2].xy for even k, .zw for odd.
+vec2 slip_of_point(vec4 pair_of_slips, uint k)
+{
+    return (k & 1u) == 0u ? pair_of_slips.xy : pair_of_slips.zw;
+}
+
+void set_manifold_slip(uint p, uint k, vec2 slip)
+{
+    if ((k & 1u) == 0u) manifolds[p].slip[k >> 1].xy = slip;
+    else manifolds[p].slip[k >> 1].zw = slip;
+}
+
 // Per-body dispatches may be laid out in rows of workgroups (see body_dispatch in layout.h).
 uint body_thread_index()
 {

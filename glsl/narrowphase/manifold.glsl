@@ -109,17 +109,9 @@ uint np_warm_match(np_target t, uint feature, vec3 point)
     return nearest;
 }
 
-// Point k's static friction slip (the block solver's) in the manifold.
-void np_set_slip(uint slot, uint k, vec2 slip)
-{
-    if ((k & 1u) == 0u) manifolds[slot].slip[k >> 1].xy = slip;
-    else manifolds[slot].slip[k >> 1].zw = slip;
-}
-
 vec2 np_prev_slip(uint prev, uint j)
 {
-    vec4 s = prev_manifolds[prev].slip[j >> 1];
-    return (j & 1u) == 0u ? s.xy : s.zw;
+    return slip_of_point(prev_manifolds[prev].slip[j >> 1], j);
 }
 
 // Point k: world point midway between the surfaces, separation along the normal.
@@ -130,7 +122,7 @@ void np_emit(np_target t, uint k, vec3 point, float separation, uint feature)
     manifolds[t.slot].impulse[k] = j == NP_NONE ? vec4(0.0)
                                                 : vec4(prev_manifolds[t.prev].impulse[j].xyz, 0.0);
     bool same = j != NP_NONE && t.prev_features[j] == feature;
-    np_set_slip(t.slot, k, same ? np_prev_slip(t.prev, j) : vec2(0.0));
+    set_manifold_slip(t.slot, k, same ? np_prev_slip(t.prev, j) : vec2(0.0));
     manifolds[t.slot].feature[k] = feature;
 }
 
@@ -142,7 +134,7 @@ void np_finish(np_target t, uint count, vec3 normal, uint a, uint b, float frict
     for (uint k = count; k < uint(TB_MAX_MANIFOLD_POINTS); k++) {
         manifolds[t.slot].point[k] = vec4(0.0);
         manifolds[t.slot].impulse[k] = vec4(0.0);
-        np_set_slip(t.slot, k, vec2(0.0));
+        set_manifold_slip(t.slot, k, vec2(0.0));
         manifolds[t.slot].feature[k] = 0u;
     }
     manifolds[t.slot].normal = vec4(normal, friction);
