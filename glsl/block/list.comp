@@ -3,7 +3,7 @@
 // Per body, after the colouring: push.args.x = 0 counts the dynamic bodies of each colour
 // (counters.colour[c].x; bodies left uncoloured in counters.solver.y), 1 writes each into its
 // colour's run of block_list (counters.colour[c].y on, in any order: bodies of one colour
-// never touch, so the order changes nothing).
+// never touch, so the order changes nothing), with its list's range.
 #include "block.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
@@ -24,5 +24,5 @@ void main()
         return;
     }
     uint at = atomicAdd(counters.colour[c].w, 1u);
-    block_list[counters.colour[c].y + at] = i;
+    block_list[counters.colour[c].y + at] = uvec4(i, block_start[i], block_fill[i], 0u);
 }

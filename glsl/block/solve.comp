@@ -3,7 +3,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 // The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y = 1
-// in the last sweep of the step): body block_list[colour[c].y + b], b < counters.colour[c].x,
+// in the last sweep of the step): body block_list[colour[c].y + b].x, b < counters.colour[c].x,
 // moves by one Newton step on
 //     E(x) = |x - y|^2_M / (2 dt^2) + sum over its contacts of the rows' energies,
 // y the inertial pose (where its velocity after gravity would take it), with the other
@@ -120,6 +120,7 @@ void motion_of(uint o, out vec3 dp, out vec3 v)
 // dispatch).
 struct item {
     uint entry, p, k, other;
+    uint other_colour; // body_colour of the other body
     block_point q;
     vec3 dp, v;
 };
@@ -131,6 +132,7 @@ item item_of(uvec2 entry)
     it.p = block_pair(entry.x);
     it.k = block_point_of(entry.x);
     it.other = entry.y;
+    it.other_colour = body_colour[it.other];
     it.q = block_load(it.p, it.k);
     motion_of(it.other, it.dp, it.v);
     return it;
@@ -146,7 +148,7 @@ void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
 // sweep (a static one, or one of an earlier colour): both are where the sweep leaves them.
 void update_item(item it, uint colour, vec3 my_dp, vec3 my_v, bool last)
 {
-    uint word = body_colour[it.other];
+    uint word = it.other_colour;
     if (word != TB_BLOCK_NOT_SOLVED && (word & 0xffu) >= colour) return;
     if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
     else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
@@ -161,8 +163,8 @@ void main()
                 + gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
     uint slot = thread / BLOCK_LANES, lane = gl_SubgroupInvocationID % BLOCK_LANES;
     bool valid = slot < counters.colour[colour].x;
-    uint i = valid ? block_list[counters.colour[colour].y + slot] : 0u;
-    uint first = valid ? block_start[i] : 0u, items = valid ? block_fill[i] : 0u;
+    uvec4 listed = valid ? block_list[counters.colour[colour].y + slot] : uvec4(0u);
+    uint i = listed.x, first = listed.y, items = listed.z;
     tb_gpu_solver_body me = solver_bodies[i];
     vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
     // The first pass's points stay in registers for the multipliers' update below.

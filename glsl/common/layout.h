@@ -90,7 +90,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       sorted so the order is the pairs') */
 #define TB_BIND_BODY_COLOUR     28 /* uint[]: each dynamic body's colour | the colouring round that
                                       gave it << 8 (TB_BLOCK_NO_COLOUR: none yet) */
-#define TB_BIND_BLOCK_LIST      29 /* uint[]: dynamic bodies grouped by colour (counters.colour) */
+#define TB_BIND_BLOCK_LIST      29 /* uvec4[]: dynamic bodies grouped by colour (counters.colour):
+                                      x the body, y its first entry, z its entry count, so a
+                                      sweep finds its list with one load; w unused */
 #define TB_BIND_COUNT           30
 
 /* Specialization constant ids, set for every pipeline. */

@@ -39,7 +39,7 @@ layout(set = 0, binding = TB_BIND_HULL_TOPOLOGY, std430) readonly buffer HullTop
 layout(set = 0, binding = TB_BIND_BLOCK_START, std430) buffer BlockStart { uint block_start[]; };
 layout(set = 0, binding = TB_BIND_BLOCK_FILL, std430) buffer BlockFill { uint block_fill[]; };
 layout(set = 0, binding = TB_BIND_BODY_COLOUR, std430) buffer BodyColour { uint body_colour[]; };
-layout(set = 0, binding = TB_BIND_BLOCK_LIST, std430) buffer BlockList { uint block_list[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_LIST, std430) buffer BlockList { uvec4 block_list[]; };
 
 // The contact arrays live at device addresses (see layout.h); these names read like arrays.
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer ManifoldArray { tb_gpu_manifold v[]; };

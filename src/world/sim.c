@@ -33,6 +33,7 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
     switch (b) {
     case TB_SIM_BODY_PAIRS: return (VkDeviceSize)capacity * 16;
     case TB_SIM_SOLVER_BODIES: return (VkDeviceSize)capacity * sizeof(tb_gpu_solver_body);
+    case TB_SIM_BLOCK_LIST: return (VkDeviceSize)capacity * (sim->block_lists ? 16 : 4);
     case TB_SIM_GRID_TABLE: return (VkDeviceSize)table_size * 8;
     case TB_SIM_BODY_SCRATCH: {
         VkDeviceSize a = tb_prims_sort_scratch(sim->prims, capacity);
