@@ -127,6 +127,9 @@ static void memory_barrier(VkCommandBuffer cb, VkPipelineStageFlags src, VkAcces
 #define STAGE_READS (VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | \
                      VK_ACCESS_UNIFORM_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT)
 #define STAGE_STAGES (VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT)
+/* The same without the indirect arguments. */
+#define SHADER_READS (VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | \
+                      VK_ACCESS_UNIFORM_READ_BIT)
 
 static void record_dispatch(VkCommandBuffer cb, const tb_pass* s, VkBuffer params)
 {
@@ -156,8 +159,12 @@ void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass
                       uint32_t count, VkBuffer params)
 {
     for (uint32_t i = 0; i < count; i++) {
-        if (i) memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                              STAGE_STAGES, STAGE_READS);
+        if (i && passes[i - 1].writes_no_arguments)
+            memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, SHADER_READS);
+        else if (i)
+            memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                           STAGE_STAGES, STAGE_READS);
         record_pass(cb, layout, &passes[i], params);
     }
 }

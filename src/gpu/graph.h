@@ -28,6 +28,9 @@ typedef struct tb_pass {
     VkDeviceSize indirect_offset;
     uint32_t push_size;
     unsigned char push[TB_PUSH_CONSTANT_BYTES];
+    /// The pass writes no dispatch arguments, so the barrier after it need not hold back
+    /// the next dispatch's indirect read (which on some GPUs drains the queue's front end).
+    int writes_no_arguments;
 } tb_pass;
 
 /// A growable list of passes, as the parallel primitives and multi-pass stages build them.
@@ -46,7 +49,8 @@ tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pas
 void tb_pass_list_free(tb_pass_list* list);
 
 /// Record passes in order with one global memory barrier between consecutive passes (none
-/// before the first or after the last). `params` holds the per-body dispatch arguments.
+/// before the first or after the last); after a pass that writes no dispatch arguments it
+/// covers shader access only. `params` holds the per-body dispatch arguments.
 void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass* passes,
                       uint32_t count, VkBuffer params);
 

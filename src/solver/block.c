@@ -50,6 +50,8 @@ static tb_result add(const tb_block_solver* s, tb_pass_list* list, VkPipeline pi
                      tb_dispatch_rule rule, VkBuffer counters, VkDeviceSize offset, uint32_t x)
 {
     tb_pass pass = tb_pass_with_args(pipeline, rule, counters, offset, x, 0, 0);
+    /* Only block/finish writes dispatch arguments (the colours' sweeps). */
+    pass.writes_no_arguments = pipeline != s->finish;
     return tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
 }
 
@@ -103,6 +105,7 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
             tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
                                               TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c,
                                               c, last, 0);
+            solve.writes_no_arguments = 1;
             r = tb_pass_list_add(list, s->pipelines->gpu->diag, &solve);
         }
     }

@@ -110,11 +110,13 @@ static tb_result record_sweep(const tb_solver* s, tb_pass_list* list, VkBuffer c
         tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
                                           TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)colour,
                                           colour, substep, mode);
+        solve.writes_no_arguments = 1;
         r = add(s, list, &solve);
     }
     if (!r && rounds == TB_MAX_COLOURS) {
         tb_pass tail = tb_pass_with_args(s->solve_tail, TB_DISPATCH_FIXED, counters, 0, 0,
                                          substep, mode);
+        tail.writes_no_arguments = 1;
         r = add(s, list, &tail);
     }
     return r;
@@ -124,6 +126,7 @@ tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list
 {
     tb_pass pass = tb_pass_with_args(s->substep, TB_DISPATCH_PER_BODY, VK_NULL_HANDLE, 0, 0, 0,
                                      what);
+    pass.writes_no_arguments = 1;
     return add(s, list, &pass);
 }
 
