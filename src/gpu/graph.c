@@ -172,6 +172,7 @@ void tb_passes_record(VkCommandBuffer cb, VkPipelineLayout layout, const tb_pass
 static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, VkBuffer params)
 {
     const tb_stage* s = &graph->stages[i];
+    int plain = s->pass_count && s->passes[s->pass_count - 1].writes_no_arguments;
     if (graph->gpu->begin_label) {
         VkDebugUtilsLabelEXT label = { .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_LABEL_EXT,
                                        .pLabelName = s->name };
@@ -183,7 +184,8 @@ static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, 
         vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, graph->queries, i + 1);
     if (i + 1 < graph->count)
         memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                       STAGE_STAGES, STAGE_READS);
+                       plain ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : STAGE_STAGES,
+                       plain ? SHADER_READS : STAGE_READS);
 }
 
 static tb_result record(tb_graph* graph, VkBuffer params)

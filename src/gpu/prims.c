@@ -147,11 +147,20 @@ void tb_prims_destroy(tb_prims* prims)
 
 /* ---- passes ---------------------------------------------------------------------------- */
 
+/* Passes that write no dispatch arguments: all but the argument kernels, and fill and copy,
+ * whose callers may point them at arguments. */
+static int writes_no_arguments(const tb_prims* prims, VkPipeline pipeline)
+{
+    return pipeline != prims->indirect_args && pipeline != prims->sort_args &&
+           pipeline != prims->fill && pipeline != prims->copy;
+}
+
 static tb_result add_fixed(tb_prims* prims, tb_pass_list* list, VkPipeline pipeline,
                            const void* push, uint32_t push_size, uint32_t groups)
 {
     tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_FIXED, .groups = { groups, 1, 1 },
-                     .push_size = push_size };
+                     .push_size = push_size,
+                     .writes_no_arguments = writes_no_arguments(prims, pipeline) };
     memcpy(pass.push, push, push_size);
     return tb_pass_list_add(list, prims->diag, &pass);
 }
@@ -160,7 +169,8 @@ static tb_result add_indirect(tb_prims* prims, tb_pass_list* list, VkPipeline pi
                               const void* push, uint32_t push_size, tb_gpu_ptr args)
 {
     tb_pass pass = { .pipeline = pipeline, .rule = TB_DISPATCH_INDIRECT, .indirect = args.buffer,
-                     .indirect_offset = args.offset, .push_size = push_size };
+                     .indirect_offset = args.offset, .push_size = push_size,
+                     .writes_no_arguments = writes_no_arguments(prims, pipeline) };
     memcpy(pass.push, push, push_size);
     return tb_pass_list_add(list, prims->diag, &pass);
 }
