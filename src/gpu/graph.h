@@ -28,8 +28,10 @@ typedef struct tb_pass {
     VkDeviceSize indirect_offset;
     uint32_t push_size;
     unsigned char push[TB_PUSH_CONSTANT_BYTES];
-    /// The pass writes no dispatch arguments, so the barrier after it need not hold back
-    /// the next dispatch's indirect read (which on some GPUs drains the queue's front end).
+    /// The pass writes no dispatch arguments, nor any bound buffer that holds some (the
+    /// counters: synchronization validation takes a shader's write to a binding as a write
+    /// of all of it), so the barrier after it need not hold back the next dispatch's
+    /// indirect read (on an H100 that wait costs about 3 us a barrier).
     int writes_no_arguments;
 } tb_pass;
 

@@ -50,8 +50,10 @@ static tb_result add(const tb_block_solver* s, tb_pass_list* list, VkPipeline pi
                      tb_dispatch_rule rule, VkBuffer counters, VkDeviceSize offset, uint32_t x)
 {
     tb_pass pass = tb_pass_with_args(pipeline, rule, counters, offset, x, 0, 0);
-    /* Only block/finish writes dispatch arguments (the colours' sweeps). */
-    pass.writes_no_arguments = pipeline != s->finish;
+    /* block/finish writes the sweeps' dispatch arguments; block/list writes the counters
+     * buffer, where the next stage's arguments are (what synchronization validation sees
+     * is the buffer, not the bytes). */
+    pass.writes_no_arguments = pipeline != s->finish && pipeline != s->list;
     return tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
 }
 

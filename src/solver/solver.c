@@ -58,7 +58,6 @@ static tb_pass colouring_pass(VkPipeline pipeline, VkBuffer counters, uint32_t r
     memcpy(&push, pass.push, sizeof push);
     push.args.w = pass_number;
     memcpy(pass.push, &push, sizeof push);
-    pass.writes_no_arguments = 1;   /* colour_finish sizes the sweeps, not claim or decide */
     return pass;
 }
 
