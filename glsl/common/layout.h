@@ -479,7 +479,9 @@ TB_STRUCT(tb_gpu_constraint_point) {
                                  separation minus dot(rb - ra, normal) (m) */
     TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z relative normal velocity
                                  before the step (m/s), w the most negative one the solve has
-                                 seen (restitution answers the faster approach) */
+                                 seen (restitution answers the faster approach); the block
+                                 solver keeps the point's stiffness in w during its sweeps and
+                                 then the bounce impulse (glsl/block/bounce.comp) */
 };
 
 /* Indexed like the pairs of this step's half (constraints[p] for pairs[half base + p]). */

@@ -28,6 +28,7 @@ static const tb_pipeline_slot kernels[] = {
     { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
     { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
     { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
+    { "block/bounce", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, bounce) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
@@ -95,22 +96,32 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     return r;
 }
 
+/* One pass of `pipeline` over each colour's bodies (its dispatch covers BLOCK_LANES threads
+ * a body), with push args (colour, y). */
+static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
+                              VkPipeline pipeline, uint32_t colours, uint32_t y)
+{
+    tb_result r = TB_OK;
+    for (uint32_t c = 0; c < colours && !r; c++) {
+        tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
+                                         TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c,
+                                         c, y, 0);
+        pass.writes_no_arguments = 1;
+        r = tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
+    }
+    return r;
+}
+
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, const tb_block_settings* settings)
+                                uint32_t colours, const tb_block_settings* settings,
+                                int restitution)
 {
     uint32_t iterations = settings->iterations;
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
-    for (uint32_t it = 0; it < iterations && !r; it++) {
-        uint32_t last = it + 1 == iterations;
-        for (uint32_t c = 0; c < colours && !r; c++) {
-            tb_pass solve = tb_pass_with_args(s->solve, TB_DISPATCH_INDIRECT, counters,
-                                              TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c,
-                                              c, last, 0);
-            solve.writes_no_arguments = 1;
-            r = tb_pass_list_add(list, s->pipelines->gpu->diag, &solve);
-        }
-    }
+    for (uint32_t it = 0; it < iterations && !r; it++)
+        r = over_colours(s, list, counters, s->solve, colours, it + 1 == iterations);
     if (!r) r = per_body(s, list, s->end, counters, 0);
+    if (!r && restitution) r = over_colours(s, list, counters, s->bounce, colours, 0);
     return r;
 }

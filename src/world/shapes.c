@@ -63,6 +63,7 @@ static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_
     w->gpu_shapes[slot].material = (tb_gpu_vec4){ record->material.friction,
                                                   record->material.restitution, 0.0f, 0.0f };
     w->shapes_dirty = 1;
+    if (record->material.restitution > 0.0f && w->bouncy_shapes++ == 0) w->step_built = 0;
     *out = (tb_shape_id){ slot + 1, w->serial, w->shapes[slot].generation };
     return TB_OK;
 }

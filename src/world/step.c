@@ -165,7 +165,8 @@ static void solve_stage(builder* b)
         if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 0);
         if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 1);
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
-                                                w->colour_rounds, &w->block_settings);
+                                                w->colour_rounds, &w->block_settings,
+                                                w->bouncy_shapes > 0);
         end_stage(b, "solver/solve");
         return;
     }

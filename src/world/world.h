@@ -115,6 +115,8 @@ struct tb_world {
     int shapes_dirty;
     tb_plugins plugins;
     tb_events events;
+    uint32_t bouncy_shapes;      ///< shapes ever made with restitution > 0: the block solver
+                                 ///< records its restitution pass once there is one
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
