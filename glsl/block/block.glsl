@@ -88,9 +88,10 @@ struct block_point {
     vec2 slip;        // static friction's slip since the point began to stick (m)
 };
 
+// The block solver's step: the whole time step (it has no substeps).
 float block_h()
 {
-    return params.soft.w;
+    return params.gravity.w;
 }
 
 // Point k's static friction slip, carried from step to step (tb_gpu_manifold.slip); read

@@ -7,7 +7,9 @@
 // forces its contacts start with (last step's, carried over) hold up: a resting body starts
 // where it is. Only that much: the rest of those forces (an impact's, a push sideways) is
 // left to the solve, or a stale impact force would launch the body. The solve's target
-// stays the inertial pose.
+// stays the inertial pose: where the velocity after gravity takes the body in the step,
+// and the turn the substep passes predicted (in pieces, the spin changing between them by
+// the gyroscopic term as in the soft step's substeps), both kept in block_target.
 #include "block.glsl"
 #include "../integrate/motion.glsl"
 
@@ -17,6 +19,8 @@ void main()
     if (i >= params.counts.x || step_aborted() || body_colour[i] == TB_BLOCK_NOT_SOLVED) return;
     tb_gpu_solver_body s = solver_bodies[i];
     float h = block_h();
+    block_target[2u * i] = vec4(s.linear.xyz * h, 0.0);
+    block_target[2u * i + 1u] = s.delta_rotation;
     vec3 force = vec3(0.0);
     uint first = block_start[i], n = block_fill[i];
     for (uint e = 0u; e < n; e++) {

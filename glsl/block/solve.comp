@@ -56,8 +56,8 @@ void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
     mat3 D = world_inertia(i) * scale;
     e.A += mat3(m * scale);
     e.D += D;
-    e.gl += m * scale * (s.delta_position.xyz - h * s.linear.xyz);
-    vec4 target = rotation_of(s.angular.xyz, h, params.limits.x);
+    e.gl += m * scale * (s.delta_position.xyz - block_target[2u * i].xyz);
+    vec4 target = block_target[2u * i + 1u];
     vec4 off = quat_mul(s.delta_rotation, vec4(-target.xyz, target.w));
     e.ga += D * rotation_vector(off);
 }

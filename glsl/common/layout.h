@@ -93,7 +93,11 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BLOCK_LIST      29 /* uvec4[]: dynamic bodies grouped by colour (counters.colour):
                                       x the body, y its first entry, z its entry count, so a
                                       sweep finds its list with one load; w unused */
-#define TB_BIND_COUNT           30
+#define TB_BIND_BLOCK_TARGET    30 /* vec4[2 * body cap], only in a world that uses the block
+                                      solver: each body's free motion over the step (its
+                                      delta_position, delta_rotation without contacts), the
+                                      pose its inertia pulls it towards */
+#define TB_BIND_COUNT           31
 
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */

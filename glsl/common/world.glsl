@@ -40,6 +40,7 @@ layout(set = 0, binding = TB_BIND_BLOCK_START, std430) buffer BlockStart { uint 
 layout(set = 0, binding = TB_BIND_BLOCK_FILL, std430) buffer BlockFill { uint block_fill[]; };
 layout(set = 0, binding = TB_BIND_BODY_COLOUR, std430) buffer BodyColour { uint body_colour[]; };
 layout(set = 0, binding = TB_BIND_BLOCK_LIST, std430) buffer BlockList { uvec4 block_list[]; };
+layout(set = 0, binding = TB_BIND_BLOCK_TARGET, std430) buffer BlockTarget { vec4 block_target[]; };
 
 // The contact arrays live at device addresses (see layout.h); these names read like arrays.
 layout(buffer_reference, std430, buffer_reference_align = 16) buffer ManifoldArray { tb_gpu_manifold v[]; };

@@ -6,7 +6,9 @@
 //    of a torque-free body say (gyroscopic_change, in the body's current frame);
 // 1: motion, semi-implicit Euler: delta_position += v h, delta_rotation turned by the angle
 //    |w| h about w (clamped to the step's largest rotation shared among the substeps).
-// h = params.soft.w. Bodies that are not dynamic have zero inverse mass and stay put.
+// h = params.soft.w, or a share 1 / push.args.y of it (the block solver's step predicts the
+// free motion in pieces, as the soft step's substeps move a body). Bodies that are not
+// dynamic have zero inverse mass and stay put.
 #include "world.glsl"
 #include "quat.glsl"
 #include "motion.glsl"
@@ -31,13 +33,14 @@ void main()
     if (i >= params.counts.x || step_aborted()) return;
     tb_gpu_solver_body s = solver_bodies[i];
     if (s.linear.w == 0.0) return;
-    float h = params.soft.w;
+    float pieces = float(max(push.args.y, 1u));
+    float h = params.soft.w / pieces;
     if (push.args.z == 0u) {
         solver_bodies[i].linear.xyz = s.linear.xyz + params.gravity.xyz * (s.angular.w * h);
         solver_bodies[i].angular.xyz = gyroscopic(i, s, h);
         return;
     }
     solver_bodies[i].delta_position.xyz = s.delta_position.xyz + s.linear.xyz * h;
-    vec4 turn = rotation_of(s.angular.xyz, h, params.limits.x / float(params.counts.z));
+    vec4 turn = rotation_of(s.angular.xyz, h, params.limits.x / (float(params.counts.z) * pieces));
     solver_bodies[i].delta_rotation = normalize(quat_mul(turn, s.delta_rotation));
 }

@@ -122,10 +122,11 @@ static tb_result record_sweep(const tb_solver* s, tb_pass_list* list, VkBuffer c
     return r;
 }
 
-tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what)
+tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what,
+                                          uint32_t pieces)
 {
-    tb_pass pass = tb_pass_with_args(s->substep, TB_DISPATCH_PER_BODY, VK_NULL_HANDLE, 0, 0, 0,
-                                     what);
+    tb_pass pass = tb_pass_with_args(s->substep, TB_DISPATCH_PER_BODY, VK_NULL_HANDLE, 0, 0,
+                                     pieces, what);
     pass.writes_no_arguments = 1;
     return add(s, list, &pass);
 }
@@ -141,11 +142,11 @@ tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffe
 {
     tb_result r = check_rounds(s, rounds);
     for (uint32_t sub = 0; sub < substeps && !r; sub++) {
-        r = tb_solver_record_substep_bodies(s, list, 0);
+        r = tb_solver_record_substep_bodies(s, list, 0, 1);
         if (!r) r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_WARM);
         for (uint32_t it = 0; it < iterations && !r; it++)
             r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_BIAS);
-        if (!r) r = tb_solver_record_substep_bodies(s, list, 1);
+        if (!r) r = tb_solver_record_substep_bodies(s, list, 1, 1);
         if (!r) r = record_sweep(s, list, counters, rounds, sub, TB_SOLVE_RELAX);
     }
     if (!r) r = record_sweep(s, list, counters, rounds, substeps, TB_SOLVE_RESTITUTION);

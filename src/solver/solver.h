@@ -72,8 +72,10 @@ tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffe
                                  uint32_t rounds, uint32_t substeps, uint32_t iterations);
 
 /// A per-body pass of integrate/substep: `what` 0 the velocities' gravity and gyroscopic
-/// change over a substep, 1 the motion over a substep.
-tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what);
+/// change over a substep, 1 the motion over a substep; with `pieces` > 1, over that share
+/// of a substep.
+tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what,
+                                          uint32_t pieces);
 
 /// apply_forces (integrate/apply_forces), per body: each body's solver record from its damped
 /// velocities and mass, and no colouring claim. After prepare, before the solve.

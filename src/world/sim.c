@@ -14,6 +14,7 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
     [TB_SIM_LARGE_LIST] = TB_BIND_LARGE_LIST, [TB_SIM_BODY_SCRATCH] = UINT32_MAX,
     [TB_SIM_BLOCK_START] = TB_BIND_BLOCK_START, [TB_SIM_BLOCK_FILL] = TB_BIND_BLOCK_FILL,
     [TB_SIM_BODY_COLOUR] = TB_BIND_BODY_COLOUR, [TB_SIM_BLOCK_LIST] = TB_BIND_BLOCK_LIST,
+    [TB_SIM_BLOCK_TARGET] = TB_BIND_BLOCK_TARGET,
 };
 
 /* The contact arrays and the block solver's lists are reached by address
@@ -34,6 +35,7 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
     case TB_SIM_BODY_PAIRS: return (VkDeviceSize)capacity * 16;
     case TB_SIM_SOLVER_BODIES: return (VkDeviceSize)capacity * sizeof(tb_gpu_solver_body);
     case TB_SIM_BLOCK_LIST: return (VkDeviceSize)capacity * (sim->block_lists ? 16 : 4);
+    case TB_SIM_BLOCK_TARGET: return sim->block_lists ? (VkDeviceSize)capacity * 32 : 0;
     case TB_SIM_GRID_TABLE: return (VkDeviceSize)table_size * 8;
     case TB_SIM_BODY_SCRATCH: {
         VkDeviceSize a = tb_prims_sort_scratch(sim->prims, capacity);
