@@ -80,7 +80,8 @@ static void test_bindings_distinct(void** state)
                       TB_BIND_GRID_TABLE, TB_BIND_LARGE_FLAGS, TB_BIND_LARGE_LIST, TB_BIND_PAIRS,
                       TB_BIND_COLOUR_LIST, TB_BIND_HULL_VECTORS, TB_BIND_HULL_TOPOLOGY,
                       TB_BIND_COLOUR_WORK, TB_BIND_PLUGIN_PARAMS, TB_BIND_BLOCK_START,
-                      TB_BIND_BLOCK_FILL, TB_BIND_BODY_COLOUR, TB_BIND_BLOCK_LIST };
+                      TB_BIND_BLOCK_FILL, TB_BIND_BODY_COLOUR, TB_BIND_BLOCK_LIST,
+                      TB_BIND_BLOCK_TARGET };
     const int n = (int)(sizeof b / sizeof b[0]);
     for (int i = 0; i < n; i++) {
         assert_in_range(b[i], 0, TB_BIND_COUNT - 1);
