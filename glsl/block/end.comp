@@ -4,7 +4,6 @@
 // with (integrate/integrate then moves the pose by the solve's displacement and turn and
 // stores them).
 #include "block.glsl"
-#include "../integrate/motion.glsl"
 
 void main()
 {

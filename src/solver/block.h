@@ -53,8 +53,6 @@ typedef struct tb_block_settings {
     float stiffness_carry;   ///< the share of last step's stiffness a contact starts from
     float anchored_friction; ///< 1: friction counts from where a point began to stick; 0:
                              ///< from where the step began (a sticking load creeps)
-    uint32_t pieces;         ///< the free motion is predicted in this many pieces of the
-                             ///< step (the world's substeps; set by the world)
 } tb_block_settings;
 
 /// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry"

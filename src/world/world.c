@@ -88,7 +88,6 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     const char* solver = getenv("TUMBLE_SOLVER");
     w->block_solver = solver && strcmp(solver, "block") == 0;
     w->block_settings = tb_block_default_settings();
-    w->block_settings.pieces = w->substeps;
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;
     tb_result r = create_gpu_objects(w, def, extra);
