@@ -13,7 +13,7 @@
 // sweeps are done) for the other body, which applies the rest when its colour comes: the
 // pair's momentum is kept, and for one pair the bounce is exact. A body's points are taken
 // one after the other (the first of each body's lanes does it: bounces are rare).
-#include "block.glsl"
+#include "listed.glsl"
 #include "../solver/bodies.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
@@ -85,11 +85,9 @@ void main()
     if (step_aborted()) return;
     uint colour = push.args.x;
     if (colour >= TB_MAX_COLOURS) return;
-    uint thread = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x
-                + gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
-    uint slot = thread / BLOCK_LANES, lane = gl_SubgroupInvocationID % BLOCK_LANES;
-    if (lane != 0u || slot >= counters.colour[colour].x) return;
-    uvec4 listed = block_list[counters.colour[colour].y + slot];
+    uvec4 listed;
+    uint lane;
+    if (!block_listed(colour, listed, lane) || lane != 0u) return;
     uint i = listed.x;
     solver_body me = solver_body_load(i);
     bool moved = false;

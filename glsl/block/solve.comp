@@ -19,7 +19,7 @@
 // the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
 // A body's points are spread over many threads instead of one thread walking them all: a
 // colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
-#include "block.glsl"
+#include "listed.glsl"
 #include "../integrate/motion.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
@@ -159,11 +159,9 @@ void main()
     if (step_aborted()) return;
     uint colour = push.args.x;
     if (colour >= TB_MAX_COLOURS) return;
-    uint thread = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x
-                + gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
-    uint slot = thread / BLOCK_LANES, lane = gl_SubgroupInvocationID % BLOCK_LANES;
-    bool valid = slot < counters.colour[colour].x;
-    uvec4 listed = valid ? block_list[counters.colour[colour].y + slot] : uvec4(0u);
+    uvec4 listed;
+    uint lane;
+    bool valid = block_listed(colour, listed, lane);
     uint i = listed.x, first = listed.y, items = listed.z;
     tb_gpu_solver_body me = solver_bodies[i];
     vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
