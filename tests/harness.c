@@ -265,3 +265,28 @@ void th_read_pose(tb_world* w, tb_body_id id, tb_vec3* position, tb_quat* rotati
 {
     th_assert_ok(tb_world_read_transforms(w, &id, 1, position, rotation));
 }
+
+double th_bounce_apex(tb_world* w, float restitution, float drop)
+{
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0.0f), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_def sd = tb_default_shape_def();
+    sd.restitution = restitution;   /* the pair takes the larger of the two */
+    tb_shape_id s;
+    th_assert_ok(tb_shape_create_sphere(w, &sd, 0.25f, &s));
+    tb_body_def d = th_dynamic_def(s, th_v3(0, 0.25f + drop, 0));
+    tb_body_id ball = th_body(w, &d);
+    int bounced = 0;
+    double apex = 0;
+    for (int i = 0; i < 600; i++) {
+        th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+        tb_vec3 p, v, omega;
+        th_read_pose(w, ball, &p, NULL);
+        th_assert_ok(tb_body_get_velocity(w, ball, &v, &omega));
+        if (!bounced && v.y > 0) bounced = 1;
+        if (bounced && p.y - 0.25 > apex) apex = p.y - 0.25;
+        if (bounced && v.y < 0) break;
+    }
+    assert_true(bounced);
+    return apex;
+}

@@ -96,4 +96,12 @@ tb_body_id th_body(tb_world* w, const tb_body_def* def);
 void th_read_pose(tb_world* w, tb_body_id id, tb_vec3* position, tb_quat* rotation);
 tb_world_stats th_stats(const tb_world* w);
 
+/* ---- scenes (assert success) ---------------------------------------------------------- */
+
+/// A ball of radius 0.25 m and restitution `restitution` dropped from `drop` m above a floor
+/// (the plane y = 0, both made in w), stepped at 60 Hz until it falls again after its first
+/// bounce (at most 600 steps): the height of its lowest point at the apex, m. Asserts that it
+/// bounced.
+double th_bounce_apex(tb_world* w, float restitution, float drop);
+
 #endif

@@ -131,21 +131,7 @@ static void test_repeatable(void** state)
 static double bounce_apex(float e, float drop)
 {
     tb_world* w = block_world();
-    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
-    th_body(w, &ground);
-    tb_body_def def = th_dynamic_def(bouncy_sphere(w, 0.25f, e), th_v3(0, 0.25f + drop, 0));
-    tb_body_id ball = th_body(w, &def);
-    int bounced = 0;
-    double apex = 0;
-    for (int i = 0; i < 600; i++) {
-        th_assert_ok(tb_world_step(w, 1.0f / 60));
-        tb_vec3 p, v, omega;
-        th_read_pose(w, ball, &p, NULL);
-        th_assert_ok(tb_body_get_velocity(w, ball, &v, &omega));
-        bounced |= v.y > 0;
-        if (bounced && p.y - 0.25 > apex) apex = p.y - 0.25;
-        if (bounced && v.y < 0) break;
-    }
+    double apex = th_bounce_apex(w, e, drop);
     th_world_destroy(w);
     return apex;
 }

@@ -67,24 +67,7 @@ static void test_sphere_rests_on_plane(void** state)
 static double bounce_apex(float restitution, float drop)
 {
     tb_world* w = world_with_gravity();
-    ground_plane(w, 0.0f);
-    tb_shape_def sd = tb_default_shape_def();
-    sd.restitution = restitution;   /* the pair takes the larger of the two */
-    tb_shape_id s;
-    th_assert_ok(tb_shape_create_sphere(w, &sd, 0.25f, &s));
-    tb_body_def d = th_dynamic_def(s, th_v3(0, 0.25f + drop, 0));
-    tb_body_id ball = th_body(w, &d);
-    int bounced = 0;
-    double apex = 0;
-    for (int i = 0; i < 600; i++) {
-        th_assert_ok(tb_world_step(w, DT));
-        tb_vec3 p, v = velocity_of(w, ball);
-        th_read_pose(w, ball, &p, NULL);
-        if (!bounced && v.y > 0) bounced = 1;
-        if (bounced && p.y - 0.25 > apex) apex = p.y - 0.25;
-        if (bounced && v.y < 0) break;
-    }
-    assert_true(bounced);
+    double apex = th_bounce_apex(w, restitution, drop);
     th_world_destroy(w);
     return apex;
 }
