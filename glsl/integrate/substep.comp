@@ -5,10 +5,10 @@
 //    and the gyroscopic term, w turned and shifted among the body axes as Euler's equations
 //    of a torque-free body say (gyroscopic_change, in the body's current frame);
 // 1: motion, semi-implicit Euler: delta_position += v h, delta_rotation turned by the angle
-//    |w| h about w (clamped to the step's largest rotation shared among the substeps).
-// h = params.soft.w, or a share 1 / push.args.y of it (the block solver's step predicts the
-// free motion in pieces, as the soft step's substeps move a body). Bodies that are not
-// dynamic have zero inverse mass and stay put.
+//    |w| h about w (clamped to the step's largest rotation shared among the substeps);
+// 2: the free motion over the substep in push.args.y pieces, each 0 then 1 over its share
+//    of h (the block solver's step predicts it so, as the soft step's substeps move a body).
+// h = params.soft.w. Bodies that are not dynamic have zero inverse mass and stay put.
 #include "world.glsl"
 #include "quat.glsl"
 #include "motion.glsl"
@@ -27,20 +27,45 @@ vec3 gyroscopic(uint i, tb_gpu_solver_body s, float h)
     return s.angular.xyz + quat_rotate(q, gyroscopic_change(w, 1.0 / inv, h));
 }
 
+// Pass 0 over a time h on record s of body i.
+void accelerate(uint i, inout tb_gpu_solver_body s, float h)
+{
+    s.angular.xyz = gyroscopic(i, s, h);
+    s.linear.xyz += params.gravity.xyz * (s.angular.w * h);
+}
+
+// Pass 1 over a time h, the turn clamped to `limit`.
+void move(inout tb_gpu_solver_body s, float h, float limit)
+{
+    s.delta_position.xyz += s.linear.xyz * h;
+    s.delta_rotation = normalize(quat_mul(rotation_of(s.angular.xyz, h, limit), s.delta_rotation));
+}
+
 void main()
 {
     uint i = body_thread_index();
     if (i >= params.counts.x || step_aborted()) return;
     tb_gpu_solver_body s = solver_bodies[i];
     if (s.linear.w == 0.0) return;
-    float pieces = float(max(push.args.y, 1u));
-    float h = params.soft.w / pieces;
+    float h = params.soft.w, turn_limit = params.limits.x / float(params.counts.z);
     if (push.args.z == 0u) {
-        solver_bodies[i].linear.xyz = s.linear.xyz + params.gravity.xyz * (s.angular.w * h);
-        solver_bodies[i].angular.xyz = gyroscopic(i, s, h);
-        return;
+        accelerate(i, s, h);
+    } else if (push.args.z == 1u) {
+        move(s, h, turn_limit);
+    } else {
+        uint pieces = max(push.args.y, 1u);
+        for (uint k = 0u; k < pieces; k++) {
+            accelerate(i, s, h / float(pieces));
+            move(s, h / float(pieces), turn_limit / float(pieces));
+        }
     }
-    solver_bodies[i].delta_position.xyz = s.delta_position.xyz + s.linear.xyz * h;
-    vec4 turn = rotation_of(s.angular.xyz, h, params.limits.x / (float(params.counts.z) * pieces));
-    solver_bodies[i].delta_rotation = normalize(quat_mul(turn, s.delta_rotation));
+    // Only what the pass changed goes back (the soft step runs passes 0 and 1 every substep).
+    if (push.args.z != 1u) {
+        solver_bodies[i].linear = s.linear;
+        solver_bodies[i].angular = s.angular;
+    }
+    if (push.args.z != 0u) {
+        solver_bodies[i].delta_position = s.delta_position;
+        solver_bodies[i].delta_rotation = s.delta_rotation;
+    }
 }

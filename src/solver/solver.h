@@ -72,8 +72,8 @@ tb_result tb_solver_record_solve(const tb_solver* s, tb_pass_list* list, VkBuffe
                                  uint32_t rounds, uint32_t substeps, uint32_t iterations);
 
 /// A per-body pass of integrate/substep: `what` 0 the velocities' gravity and gyroscopic
-/// change over a substep, 1 the motion over a substep; with `pieces` > 1, over that share
-/// of a substep.
+/// change over a substep, 1 the motion over a substep, 2 both in turn in `pieces` pieces of
+/// the substep (`pieces` is read only then).
 tb_result tb_solver_record_substep_bodies(const tb_solver* s, tb_pass_list* list, uint32_t what,
                                           uint32_t pieces);
 

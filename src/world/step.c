@@ -163,10 +163,7 @@ static void solve_stage(builder* b)
     if (w->block_solver) {
         /* The free motion over the step, in the world's substeps as pieces: the velocities
          * and the pose the solve's inertia pulls towards. */
-        for (uint32_t k = 0; k < w->substeps && !b->r; k++) {
-            b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 0, w->substeps);
-            if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 1, w->substeps);
-        }
+        if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 2, w->substeps);
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
                                                 w->colour_rounds, &w->block_settings,
                                                 w->bouncy_shapes > 0);
