@@ -7,8 +7,9 @@
 // forces its contacts start with (last step's, carried over) hold up: a resting body starts
 // where it is. Only that much: the rest of those forces (an impact's, a push sideways) is
 // left to the solve, or a stale impact force would launch the body. The solve's target
-// stays the inertial pose: where the velocity after gravity takes the body in the step,
-// and the turn the substep passes predicted (in pieces, the spin changing between them by
+// stays the inertial pose: where the velocity after gravity takes the body in the step
+// (in one piece: block/end moves the body on by what the pieces add), and the turn the
+// substep passes predicted (in pieces, the spin changing between them by
 // the gyroscopic term as in the soft step's substeps), both kept in block_target.
 #include "block.glsl"
 #include "../integrate/motion.glsl"
@@ -21,22 +22,12 @@ void main()
     float h = block_h();
     block_target[2u * i] = vec4(s.linear.xyz * h, 0.0);
     block_target[2u * i + 1u] = s.delta_rotation;
-    vec3 force = vec3(0.0);
-    uint first = block_start[i], n = block_fill[i];
-    for (uint e = 0u; e < n; e++) {
-        uint entry = block_entries[first + e].x;
-        uint p = block_pair(entry), k = block_point_of(entry);
-        vec3 l = manifolds[p].impulse[k].xyz / h;
-        vec3 f = manifolds[p].normal.xyz * l.x + constraints[p].tangent1.xyz * l.y
-               + constraints[p].tangent2.xyz * l.z;
-        force += block_is_b(entry) ? f : -f;
-    }
     vec3 g = params.gravity.xyz * s.angular.w;
     float weight = length(g);
     vec3 v = s.linear.xyz;
     if (weight > 0.0) {
         vec3 up = -g / weight;
-        float held = clamp(dot(force, up) * s.linear.w, 0.0, weight);
+        float held = clamp(dot(block_contact_force(i), up) * s.linear.w, 0.0, weight);
         v += h * held * up;
     }
     solver_bodies[i].delta_position.xyz = v * h;

@@ -173,7 +173,8 @@ TB_STRUCT(tb_gpu_params) {
                                of last step's force a contact starts from */
     TB_VEC4 block_more;     /* x the share of a step's starting penetration left for later
                                steps (stabilisation), y 1 when friction counts from where a
-                               point began to stick (0: from the step's start), z reserved,
+                               point began to stick (0: from the step's start), z the pieces
+                               the free motion of a step is predicted in (the substeps),
                                w the share of last step's
                                stiffness a contact starts from (a pair's stiffness is carried
                                in tb_gpu_manifold.axis.w) */

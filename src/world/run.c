@@ -34,7 +34,8 @@ static void write_params(tb_world* w, float dt)
     p->soft_static = tb_solver_softness(&contact, dt / (float)substeps, 2.0);
     const tb_block_settings* b = &w->block_settings;
     p->block = (tb_gpu_vec4){ b->stiffness, b->growth, b->max_stiffness, b->warm_share };
-    p->block_more = (tb_gpu_vec4){ b->stabilisation, b->anchored_friction, 0, b->stiffness_carry };
+    p->block_more = (tb_gpu_vec4){ b->stabilisation, b->anchored_friction, (float)w->substeps,
+                                   b->stiffness_carry };
     const tb_buffer* pair = w->sim.pair;
     p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
                                             pair[TB_SIM_PREV_MANIFOLDS].address);
