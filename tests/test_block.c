@@ -1,5 +1,5 @@
-/* The block solver (src/solver/block.h), still experimental and chosen by TUMBLE_SOLVER=block
- * at world creation: what it already holds, so it keeps holding it while it is worked on.
+/* The block solver (src/solver/block.h), still experimental, chosen by tb_world_set_solver
+ * before the first step: what it already holds, so it keeps holding it while it is worked on.
  * Measured on lavapipe at its defaults (30 sweeps): the column of 20 sinks 4.0 mm in 1000
  * steps (the soft step: 27 mm), a tilted box dropped on the floor lands on a face and stays.
  */
@@ -13,9 +13,8 @@
 
 static tb_world* block_world_of(const tb_world_def* def)
 {
-    setenv("TUMBLE_SOLVER", "block", 1);
     tb_world* w = th_world_create(def);
-    unsetenv("TUMBLE_SOLVER");
+    th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 0));
     return w;
 }
 
@@ -209,6 +208,43 @@ static void test_impact_is_not_carried(void** state)
     th_world_destroy(w);
 }
 
+/* tb_world_set_solver chooses the solver before the first step, and only then; bad
+ * arguments are refused with a sentence and change nothing. A world switched to the block
+ * solver and back after bodies were added steps with each. */
+static void test_solver_choice(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    uint32_t iterations = 0;
+    assert_int_equal(tb_world_get_solver(w, &iterations), TB_SOLVER_SOFT_STEP);
+    assert_int_equal(iterations, 30);
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.5f, 0.5f, 0.5f)), th_v3(0, 0.6f, 0));
+    tb_body_id box = th_body(w, &d);
+    th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 20));
+    assert_int_equal(tb_world_get_solver(w, &iterations), TB_SOLVER_BLOCK);
+    assert_int_equal(iterations, 20);
+    assert_int_equal(tb_world_set_solver(w, (tb_solver_kind)7, 0), TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "unknown solver"));
+    assert_int_equal(tb_world_set_solver(w, TB_SOLVER_SOFT_STEP, 1001), TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "iterations"));
+    assert_int_equal(tb_world_get_solver(w, &iterations), TB_SOLVER_BLOCK);
+    assert_int_equal(iterations, 20);
+    th_assert_ok(tb_world_set_solver(w, TB_SOLVER_SOFT_STEP, 0));
+    th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 0));
+    th_assert_ok(tb_world_step_n(w, 1.0f / 60, 60));
+    assert_int_equal(tb_world_set_solver(w, TB_SOLVER_SOFT_STEP, 0), TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "before the world's first step"));
+    assert_int_equal(tb_world_get_solver(w, NULL), TB_SOLVER_BLOCK);
+    tb_vec3 p;
+    th_read_pose(w, box, &p, NULL);
+    th_assert_near(p.y, 0.5, 1e-3, 0);
+    assert_int_equal(tb_world_get_solver(NULL, NULL), TB_SOLVER_SOFT_STEP);
+    assert_int_equal(tb_world_set_solver(NULL, TB_SOLVER_BLOCK, 0), TB_ERROR_INVALID_ARGUMENT);
+    th_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -218,6 +254,7 @@ int main(void)
         cmocka_unit_test(test_bounce_height),
         cmocka_unit_test(test_head_on_bounce_trades_velocities),
         cmocka_unit_test(test_impact_is_not_carried),
+        cmocka_unit_test(test_solver_choice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

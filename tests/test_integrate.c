@@ -217,12 +217,11 @@ static double norm3(const double v[3])
 }
 
 /* A world of definition `def` (NULL: the defaults) for `solver` (NULL: the default soft
- * step; "block": the block solver, still chosen by TUMBLE_SOLVER at creation). */
+ * step; "block": the block solver). */
 static tb_world* world_of(const tb_world_def* def, const char* solver)
 {
-    if (solver) setenv("TUMBLE_SOLVER", solver, 1);
     tb_world* w = th_world_create(def);
-    unsetenv("TUMBLE_SOLVER");
+    if (solver) th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 0));
     return w;
 }
 

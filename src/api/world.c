@@ -104,6 +104,26 @@ tb_vec3 tb_world_get_gravity(const tb_world* w)
     return w ? w->gravity : (tb_vec3){ 0, 0, 0 };
 }
 
+tb_result tb_world_set_solver(tb_world* w, tb_solver_kind solver, uint32_t iterations)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (solver != TB_SOLVER_SOFT_STEP && solver != TB_SOLVER_BLOCK)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "unknown solver %d", (int)solver);
+    if (iterations > 1000)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "the block solver's iterations "
+                       "must be in [1, 1000] (0: the default), not %u", iterations);
+    if (w->submits > 0)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "the solver can only be chosen "
+                       "before the world's first step");
+    return tb_world_use_solver(w, solver == TB_SOLVER_BLOCK, iterations);
+}
+
+tb_solver_kind tb_world_get_solver(const tb_world* w, uint32_t* iterations)
+{
+    if (iterations) *iterations = w ? w->block_settings.iterations : 0;
+    return w && w->block_solver ? TB_SOLVER_BLOCK : TB_SOLVER_SOFT_STEP;
+}
+
 tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;

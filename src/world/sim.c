@@ -133,9 +133,9 @@ static uint32_t table_bits_for(uint32_t capacity)
     return bits;
 }
 
-tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
+/* New per-body buffers for `capacity` bodies, the body pairs kept. */
+static tb_result resize_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
 {
-    if (capacity <= sim->body_capacity && sim->body[0].buffer) return TB_OK;
     uint32_t bits = table_bits_for(capacity);
     tb_buffer fresh[TB_SIM_BODY_BUFFER_COUNT];
     memset(fresh, 0, sizeof fresh);
@@ -159,9 +159,15 @@ tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
     return TB_OK;
 }
 
-tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
+tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity)
 {
-    if (pairs <= sim->pair_capacity && sim->pair[0].buffer) return TB_OK;
+    if (capacity <= sim->body_capacity && sim->body[0].buffer) return TB_OK;
+    return resize_bodies(sim, t, capacity);
+}
+
+/* New pair buffers for `pairs` pairs a half, the pairs and last step's manifolds kept. */
+static tb_result resize_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
+{
     if (pairs > tb_sim_pair_limit(sim))
         return tb_fail(diag_of(sim), TB_ERROR_CAPACITY, "%u pairs are more than the %u this "
                        "device's buffers (and the solver's colouring) can hold", pairs,
@@ -186,6 +192,25 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
     sim->pair_capacity = pairs;
     sim->growths++;
     return TB_OK;
+}
+
+tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
+{
+    if (pairs <= sim->pair_capacity && sim->pair[0].buffer) return TB_OK;
+    return resize_pairs(sim, t, pairs);
+}
+
+tb_result tb_sim_set_block_lists(tb_sim* sim, tb_transfer* t, int on)
+{
+    if (!sim->block_lists == !on) return TB_OK;
+    uint32_t pairs = sim->pair_capacity;
+    sim->block_lists = on;
+    uint32_t limit = tb_sim_pair_limit(sim);
+    tb_result r = resize_bodies(sim, t, sim->body_capacity);
+    if (!r) r = resize_pairs(sim, t, pairs < limit ? pairs : limit);
+    /* Buffers sized for the lists serve a world without them as well. */
+    if (r && on) sim->block_lists = 0;
+    return r;
 }
 
 tb_result tb_sim_init(tb_sim* sim, tb_memory* memory, tb_pipelines* pipelines, tb_prims* prims,

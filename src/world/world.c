@@ -133,6 +133,19 @@ void tb_world_free(tb_world* w)
     free(w);
 }
 
+tb_result tb_world_use_solver(tb_world* w, int block, uint32_t iterations)
+{
+    tb_result r = TB_OK;
+    if (block && !w->block.pipelines) r = tb_block_init(&w->block, &w->pipelines);
+    if (!r) r = tb_sim_set_block_lists(&w->sim, &w->transfer, block);
+    if (r) return r;
+    w->block_solver = block;
+    if (iterations) w->block_settings.iterations = iterations;
+    w->step_built = 0;
+    w->buffer_generation++;
+    return TB_OK;
+}
+
 tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots)
 {
     int grew = 0;

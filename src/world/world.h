@@ -141,6 +141,11 @@ void tb_world_free(tb_world* w);
 /// Make room for `slots` body slots on the GPU.
 tb_result tb_world_reserve_bodies(tb_world* w, uint32_t slots);
 
+/// Step with the block solver (`block`) or the soft step from the next step on, the block
+/// solver with `iterations` sweeps (0: as it was). Only for a world that has not stepped:
+/// the step buffers are made anew (tb_sim_set_block_lists).
+tb_result tb_world_use_solver(tb_world* w, int block, uint32_t iterations);
+
 /* run.c: submitting steps, growing what overflowed and running the step again. */
 /// Run n steps of dt (checked), redoing any step a buffer overflowed in.
 tb_result tb_world_run(tb_world* w, float dt, uint32_t n);

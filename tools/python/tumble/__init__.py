@@ -49,6 +49,8 @@ def _broadphases():
     return names
 
 
+SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_solver_kind
+
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
                 lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull"}
@@ -449,6 +451,22 @@ class World:
     def gravity(self, value):
         g = _vec3("gravity", value)
         self._check(lib.tb_world_set_gravity(self._handle(), g))
+
+    def set_solver(self, solver, iterations=0):
+        """Choose the contact solver before the world's first step: "soft" (the soft step,
+        the default) or "block" (hard contacts: deep piles and tall pyramids stand), the block
+        solver with `iterations` sweeps a step (0: its default, 30). tb_world_set_solver."""
+        if solver not in SOLVERS:
+            raise ValueError("solver must be one of %s, got %r"
+                             % (", ".join(repr(k) for k in SOLVERS), solver))
+        n = _count("iterations", iterations)
+        self._check(lib.tb_world_set_solver(self._handle(), SOLVERS[solver], n))
+
+    @property
+    def solver(self):
+        """The contact solver, "soft" or "block" (set_solver chooses it)."""
+        kind = lib.tb_world_get_solver(self._handle(), ffi.NULL)
+        return next(name for name, value in SOLVERS.items() if value == kind)
 
     def device_info(self):
         """The Vulkan device: name, driver, vendor_id, device_id, api_version,
