@@ -229,6 +229,17 @@ tb_shape_id th_box(tb_world* w, tb_vec3 half_extents)
     return id;
 }
 
+tb_shape_id th_rock(tb_world* w)
+{
+    tb_vec3 pts[8];
+    for (int i = 0; i < 8; i++)
+        pts[i] = th_v3(i & 1 ? 0.1f : -0.1f, i & 2 ? 0.12f : -0.1f, i & 4 ? 0.1f : -0.08f);
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id id = tb_null_shape;
+    th_assert_ok(tb_shape_create_hull(w, &sd, pts, 8, &id));
+    return id;
+}
+
 tb_shape_id th_plane(tb_world* w, tb_vec3 normal, float offset)
 {
     tb_shape_def sd = tb_default_shape_def();

@@ -87,6 +87,9 @@ void th_assert_result_(tb_result got, tb_result want, const char* expr, const ch
 tb_shape_id th_sphere(tb_world* w, float radius);
 tb_shape_id th_box(tb_world* w, tb_vec3 half_extents);
 tb_shape_id th_plane(tb_world* w, tb_vec3 normal, float offset);
+/// A small 8-vertex hull, a box of about 0.2 m with its faces moved apart unevenly, so its
+/// centre of mass is off the origin of its points.
+tb_shape_id th_rock(tb_world* w);
 /// tb_default_body_def() with the given shape and position (dynamic).
 tb_body_def th_dynamic_def(tb_shape_id shape, tb_vec3 position);
 /// As th_dynamic_def, static.

@@ -185,13 +185,7 @@ static void test_impact_is_not_carried(void** state)
     tb_world* w = block_world_of(&wd);
     tb_body_def d = th_static_def(th_box(w, th_v3(0.025f, 5, 5)), th_v3(0, 0, 0));
     th_body(w, &d);
-    tb_vec3 pts[8];
-    for (int i = 0; i < 8; i++)
-        pts[i] = th_v3(i & 1 ? 0.1f : -0.1f, i & 2 ? 0.12f : -0.1f, i & 4 ? 0.1f : -0.08f);
-    tb_shape_def sd = tb_default_shape_def();
-    tb_shape_id rock;
-    th_assert_ok(tb_shape_create_hull(w, &sd, pts, 8, &rock));
-    d = th_dynamic_def(rock, th_v3(-3.05f, 0, 0));
+    d = th_dynamic_def(th_rock(w), th_v3(-3.05f, 0, 0));
     d.linear_velocity = th_v3(100, 0, 0);
     tb_body_id id = th_body(w, &d);
     th_assert_ok(tb_world_step_n(w, 1.0f / 60, 3));

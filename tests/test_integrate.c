@@ -57,15 +57,22 @@ static void assert_matches_ref(tb_world* w, tb_body_id id, const ref_body* r, do
     th_assert_near(v.z, r->v[2], 1e-5, v_rel);
 }
 
+/* A world of definition `def` (NULL: the defaults) for `solver` (NULL: the default soft
+ * step; "block": the block solver). */
+static tb_world* world_of(const tb_world_def* def, const char* solver)
+{
+    tb_world* w = th_world_create(def);
+    if (solver) th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 0));
+    return w;
+}
+
 /* (a) Free fall of spheres and boxes with initial velocity. After one step the position
  * must include g*h*dt (semi-implicit per substep of h: velocity first), which explicit Euler
  * would miss; after 120 steps, n = 120 * substeps substeps of h, the closed form
  * x0 + v0 n h + g h^2 n(n+1)/2. */
-static tb_world* world_for(const char* solver);
-
 static void free_fall(const char* solver)
 {
-    tb_world* w = world_for(solver);
+    tb_world* w = world_of(NULL, solver);
     const tb_vec3 g = tb_world_get_gravity(w);
     th_assert_near(g.y, -9.81, 1e-6, 0); /* the documented default */
     tb_shape_id sphere = th_sphere(w, 0.5f), box = th_box(w, th_v3(0.5f, 0.25f, 1.0f));
@@ -214,20 +221,6 @@ static spin_state spin_of(tb_world* w, tb_body_id id)
 static double norm3(const double v[3])
 {
     return sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-}
-
-/* A world of definition `def` (NULL: the defaults) for `solver` (NULL: the default soft
- * step; "block": the block solver). */
-static tb_world* world_of(const tb_world_def* def, const char* solver)
-{
-    tb_world* w = th_world_create(def);
-    if (solver) th_assert_ok(tb_world_set_solver(w, TB_SOLVER_BLOCK, 0));
-    return w;
-}
-
-static tb_world* world_for(const char* solver)
-{
-    return world_of(NULL, solver);
 }
 
 /* A world without gravity for `solver`. */

@@ -210,10 +210,11 @@ float carried_impact(uint p, uint k, block_point q)
 // the later of the two): the multipliers take the forces the rows now have (lambda <- f),
 // and a point still in contact stiffens by params.block.y (per metre of its normal error, in
 // units of its effective mass over dt^2) up to params.block.z. The impulses' w is the step's
-// normal impulse so far (f_n dt); after the last sweep x leaves out the impact (carried_impact). After the last sweep (`last`) the point keeps, for the next
-// step, its tangential slip while it sticks (none once it slides), and the pair keeps its
-// stiffest point's stiffness, in its unit, for the next step (axis.w, which start.comp
-// zeroed: the last sweep updates every point once, and stiffnesses only grow in a step).
+// normal impulse so far (f_n dt). After the last sweep (`last`) the point keeps, for the
+// next step, its normal force without the impact's (carried_impact) and its tangential slip
+// while it sticks (none once it slides), and the pair keeps its stiffest point's stiffness,
+// in its unit, for the next step (axis.w, which start.comp zeroed: the last sweep updates
+// every point once, and stiffnesses only grow in a step).
 void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
 {
     float h = block_h();

@@ -202,14 +202,18 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
 
 tb_result tb_sim_set_block_lists(tb_sim* sim, tb_transfer* t, int on)
 {
-    if (!sim->block_lists == !on) return TB_OK;
+    /* Buffers sized for the lists serve a world without them as well: turning them off
+     * only sizes later growth without them. */
+    if (!on || sim->block_lists) {
+        sim->block_lists = on;
+        return TB_OK;
+    }
     uint32_t pairs = sim->pair_capacity;
-    sim->block_lists = on;
+    sim->block_lists = 1;
     uint32_t limit = tb_sim_pair_limit(sim);
     tb_result r = resize_bodies(sim, t, sim->body_capacity);
     if (!r) r = resize_pairs(sim, t, pairs < limit ? pairs : limit);
-    /* Buffers sized for the lists serve a world without them as well. */
-    if (r && on) sim->block_lists = 0;
+    if (r) sim->block_lists = 0;
     return r;
 }
 

@@ -58,9 +58,10 @@ uint32_t tb_sim_pair_limit(const tb_sim* sim);
 tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs);
 
 /// The counters as the last executed step left them.
-/// Size the block solver's lists (`on`) or leave them empty: every buffer is made anew at
-/// the present capacities (the pairs fewer when the lists lower the limit). For a world
-/// that has not stepped yet: what the step buffers held is not kept.
+/// Size the block solver's lists (`on`: every buffer is made anew at the present capacities,
+/// the pairs fewer when the lists lower the limit) or stop sizing them (the buffers stay as
+/// they are until they grow). For a world that has not stepped yet: what the step buffers
+/// held is not kept.
 tb_result tb_sim_set_block_lists(tb_sim* sim, tb_transfer* t, int on);
 
 const tb_gpu_counters* tb_sim_counters(const tb_sim* sim);
