@@ -89,9 +89,12 @@ tb_result hulls_build(tb_world* world, const scene_params* params, scene_instanc
 
 /* stacks.c */
 tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result columns_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result pyramid_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result stack_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                       scene_checks* out);
+tb_result columns_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                        scene_checks* out);
 uint32_t pyramid_base(uint32_t n);
 
 #endif

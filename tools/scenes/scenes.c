@@ -239,6 +239,10 @@ static const scene scenes[] = {
     { "pyramid", "2-D pyramid of unit boxes on a plane, base b with b(b+1)/2 <= N; checks "
                  "drift, nan, fallen", 1.0f / 60.0f, 55, 1000,
       pyramid_build, stack_check, instance_free },
+    { "columns", "N unit boxes in free-standing columns 16 deep on a grid of pitch 1.1 m, "
+                 "each box shifted sideways by up to 4 cm, dropped onto each other from 10 cm "
+                 "apart; checks resting, sideways drift, nan, fallen", 1.0f / 60.0f, 144,
+      600, columns_build, columns_check, instance_free },
     { "deep", "N unit boxes on a grid of pitch 1.1 m, ceil(cbrt N)^2 a layer, dropped into "
               "a container whose 10 m walls are lower than the pile, friction 0.5; checks "
               "escaped, resting, max_penetration, column heights", 1.0f / 60.0f, 100000, 600,
