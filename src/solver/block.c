@@ -1,6 +1,7 @@
 /* Pipelines and pass lists of the block solver. */
 #include "solver/block.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -8,11 +9,11 @@
 
 tb_block_settings tb_block_default_settings(void)
 {
-    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 0.0f };
+    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 0.0f, 1.2f };
     const char* env = getenv("TUMBLE_BLOCK");
-    if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
+    if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
                     &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry,
-                    &s.anchored_friction);
+                    &s.anchored_friction, &s.over_relaxation);
     return s;
 }
 
@@ -97,15 +98,15 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 }
 
 /* One pass of `pipeline` over each colour's bodies (its dispatch covers BLOCK_LANES threads
- * a body), with push args (colour, y). */
+ * a body), with push args (colour, y, z). */
 static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                              VkPipeline pipeline, uint32_t colours, uint32_t y)
+                              VkPipeline pipeline, uint32_t colours, uint32_t y, uint32_t z)
 {
     tb_result r = TB_OK;
     for (uint32_t c = 0; c < colours && !r; c++) {
         tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
                                          TB_COUNTERS_COLOUR_DISPATCH_OFFSET + 16 * (VkDeviceSize)c,
-                                         c, y, 0);
+                                         c, y, z);
         pass.writes_no_arguments = 1;
         r = tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
     }
@@ -117,11 +118,13 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
                                 int restitution)
 {
     uint32_t iterations = settings->iterations;
+    /* block/solve takes the over-relaxation in thousandths (0: none). */
+    uint32_t relax = (uint32_t)lroundf(settings->over_relaxation * 1000.0f);
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = over_colours(s, list, counters, s->solve, colours, it + 1 == iterations);
+        r = over_colours(s, list, counters, s->solve, colours, it + 1 == iterations, relax);
     if (!r) r = per_body(s, list, s->end, counters, 0);
-    if (!r && restitution) r = over_colours(s, list, counters, s->bounce, colours, 0);
+    if (!r && restitution) r = over_colours(s, list, counters, s->bounce, colours, 0, 0);
     return r;
 }

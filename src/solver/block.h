@@ -53,10 +53,11 @@ typedef struct tb_block_settings {
     float stiffness_carry;   ///< the share of last step's stiffness a contact starts from
     float anchored_friction; ///< 1: friction counts from where a point began to stick; 0:
                              ///< from where the step began (a sticking load creeps)
+    float over_relaxation;   ///< how far a body moves along its Newton step in a sweep
 } tb_block_settings;
 
-/// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry"
-/// overrides them while the solver is being tuned).
+/// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry,
+/// anchored,over-relaxation" overrides them while the solver is being tuned).
 tb_block_settings tb_block_default_settings(void);
 
 tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines);
