@@ -50,10 +50,30 @@ newton no_newton()
     return e;
 }
 
+// skew(a) b = cross(a, b), column by column.
+mat3 skew(vec3 a)
+{
+    return mat3(0.0, a.z, -a.y, -a.z, 0.0, a.x, a.y, -a.x, 0.0);
+}
+
+// The inertia's rows of body i (state s). Its turn beyond the free turn (block_target),
+// theta, changes its spin by theta / h, and a spinning body answers a change of spin with the
+// gyroscopic term: Euler's equations I dw/dt + w x I w = torque, the turn's part of them
+// linearised about the free spin w, ask
+//     (I + h (skew(w) I - skew(I w))) theta / h^2 = torque
+// (one Newton step on the body's angular momentum equation). Without the gyroscopic part a
+// fast top took the torque of its tip as a plain push and fell over instead of precessing
+// (test_integrate, 40 rad/s at 60 Hz: -0.19 rad/s of precession instead of 1.22, the tilt
+// off by 13 degrees; with it 1.18 rad/s and 1.5 degrees; the soft step's substeps hand the
+// torque to the spin in four pieces, the block solver in one). For a sphere, or a body at
+// rest, it is the inertia alone. The matrix is not symmetric; the block elimination in main
+// does not need it to be.
 void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
 {
     float m = 1.0 / s.linear.w, scale = 1.0 / (h * h);
-    mat3 D = world_inertia(i) * scale;
+    mat3 I = world_inertia(i);
+    vec3 w = s.angular.xyz;
+    mat3 D = (I + h * (skew(w) * I - skew(I * w))) * scale;
     e.A += mat3(m * scale);
     e.D += D;
     e.gl += m * scale * (s.delta_position.xyz - block_target[2u * i].xyz);
