@@ -50,17 +50,11 @@ newton no_newton()
     return e;
 }
 
-// skew(a) b = cross(a, b), column by column.
-mat3 skew(vec3 a)
-{
-    return mat3(0.0, a.z, -a.y, -a.z, 0.0, a.x, a.y, -a.x, 0.0);
-}
-
 // The inertia's rows of body i (state s). Its turn beyond the free turn (block_target),
 // theta, changes its spin by theta / h, and a spinning body answers a change of spin with the
 // gyroscopic term: Euler's equations I dw/dt + w x I w = torque, the turn's part of them
 // linearised about the free spin w, ask
-//     (I + h (skew(w) I - skew(I w))) theta / h^2 = torque
+//     (I + h (skew(w) I - skew(I w))) theta / h^2 = torque   (skew: integrate/motion.glsl)
 // (one Newton step on the body's angular momentum equation). Without the gyroscopic part a
 // fast top took the torque of its tip as a plain push and fell over instead of precessing
 // (test_integrate, 40 rad/s at 60 Hz: -0.19 rad/s of precession instead of 1.22, the tilt

@@ -23,6 +23,12 @@ vec4 rotation_of(vec3 w, float dt, float max_angle)
     return vec4(w * s, cos(0.5 * angle));
 }
 
+// skew(a) b = cross(a, b), column by column (GLSL's mat3 takes columns).
+mat3 skew(vec3 a)
+{
+    return mat3(0.0, a.z, -a.y, -a.z, 0.0, a.x, a.y, -a.x, 0.0);
+}
+
 // The gyroscopic term of a torque-free body over a time h: the change of angular velocity
 // over h by Euler's equations I dw/dt + w x I w = 0 in the body frame (I: principal moments, w in the
 // body frame), by one Newton step on the implicit midpoint rule
@@ -36,15 +42,8 @@ vec3 gyroscopic_change(vec3 w, vec3 inertia, float h)
 {
     vec3 Iw = inertia * w;
     vec3 f = h * cross(w, Iw);
-    // The Jacobian I + h/2 (skew(w) I - skew(I w)), column by column (GLSL's mat3 takes
-    // columns): skew(a) b = cross(a, b).
-    float k = 0.5 * h;
-    mat3 J = mat3(vec3(inertia.x, 0.0, 0.0) + k * (cross(w, vec3(inertia.x, 0.0, 0.0)) -
-                                                   cross(Iw, vec3(1.0, 0.0, 0.0))),
-                  vec3(0.0, inertia.y, 0.0) + k * (cross(w, vec3(0.0, inertia.y, 0.0)) -
-                                                   cross(Iw, vec3(0.0, 1.0, 0.0))),
-                  vec3(0.0, 0.0, inertia.z) + k * (cross(w, vec3(0.0, 0.0, inertia.z)) -
-                                                   cross(Iw, vec3(0.0, 0.0, 1.0))));
+    mat3 I = mat3(inertia.x, 0.0, 0.0, 0.0, inertia.y, 0.0, 0.0, 0.0, inertia.z);
+    mat3 J = I + 0.5 * h * (skew(w) * I - skew(Iw));
     return -(inverse(J) * f);
 }
 
