@@ -28,6 +28,29 @@ bool block_dynamic(uint i)
     return body_is(i, TB_BODY_FLAG_ALIVE | TB_BODY_FLAG_DYNAMIC);
 }
 
+// A dynamic body's place in a sweep, from its body_colour word: its colour, or for a body
+// the colouring left to the tail (more than TB_MAX_COLOURS were needed), TB_MAX_COLOURS +
+// its place in the tail, which is solved one body at a time after the colours.
+uint block_order(uint word)
+{
+    uint c = word & 0xffu;
+    return c < uint(TB_MAX_COLOURS) ? c : uint(TB_MAX_COLOURS) + (word >> 8);
+}
+
+// Whether the body whose body_colour word is `word` has already moved in a sweep when the
+// body of place `order` moves: a static or kinematic body never moves.
+bool block_moved_before(uint word, uint order)
+{
+    return word == TB_BLOCK_NOT_SOLVED || block_order(word) < order;
+}
+
+// Where the tail's bodies start in block_list: after every colour's.
+uint block_tail_start()
+{
+    uint last = uint(TB_MAX_COLOURS) - 1u;
+    return counters.colour[last].y + counters.colour[last].x;
+}
+
 // An entry of a body's contact list is one contact point: its pair, its point, and which
 // end of the pair the body is.
 uint block_entry(uint p, uint k, bool is_b)

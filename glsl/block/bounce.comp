@@ -1,18 +1,19 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
-// Restitution for the block solver, per body of colour push.args.x, after block/end has
-// turned the solve's motion into velocities. A contact point that approached faster than the
-// restitution threshold (approach: before the step, sped up by gravity over the gap it
-// closed) and carried load at the end of the solve (impulse.w > 0) leaves at e times that
-// speed, e the pair's restitution.
+// Restitution for the block solver, per body of colour push.args.x (TB_MAX_COLOURS: the
+// tail's bodies, one after the other), after block/end has turned the solve's motion into
+// velocities. A contact point that approached faster than the restitution threshold
+// (approach: before the step, sped up by gravity over the gap it closed) and carried load at
+// the end of the solve (impulse.w > 0) leaves at e times that speed, e the pair's
+// restitution.
 //
 // Each body changes only its own velocities. The first of a pair's bodies to come (the one
-// of the lower colour, or the only dynamic one) finds the point's impulse from both bodies'
-// velocities, applies its share and keeps the impulse (constraint mass.w, free once the
-// sweeps are done) for the other body, which applies the rest when its colour comes: the
-// pair's momentum is kept, and for one pair the bounce is exact. A body's points are taken
-// one after the other (the first of each body's lanes does it: bounces are rare).
+// of the earlier place, block_order, or the only dynamic one) finds the point's impulse from
+// both bodies' velocities, applies its share and keeps the impulse (constraint mass.w, free
+// once the sweeps are done) for the other body, which applies the rest when its turn comes:
+// the pair's momentum is kept, and for one pair the bounce is exact. A body's points are
+// taken one after the other (the first of each body's lanes does it: bounces are rare).
 #include "listed.glsl"
 #include "../solver/bodies.glsl"
 
@@ -83,14 +84,10 @@ float bounce_impulse(uint p, uint k, solver_body me, bool is_b, uint other, floa
     return size;
 }
 
-void main()
+// The bounces of body listed.x, at place `order` in the sweep (block_order), by one
+// invocation.
+void bounce_body(uvec4 listed, uint order)
 {
-    if (step_aborted()) return;
-    uint colour = push.args.x;
-    if (colour >= TB_MAX_COLOURS) return;
-    uvec4 listed;
-    uint lane;
-    if (!block_listed(colour, listed, lane) || lane != 0u) return;
     uint i = listed.x;
     solver_body me = solver_body_load(i);
     bool moved = false;
@@ -102,7 +99,7 @@ void main()
             float e, before;
             if (!bounces(p, k, e, before)) continue;
             uint word = body_colour[entry.y];
-            bool other_first = word != TB_BLOCK_NOT_SOLVED && (word & 0xffu) < colour;
+            bool other_first = word != TB_BLOCK_NOT_SOLVED && block_order(word) < order;
             if (other_first != (pass == 0u)) continue;
             bool is_b = block_is_b(entry.x);
             float size = other_first ? constraints[p].p[k].mass.w
@@ -114,4 +111,22 @@ void main()
     if (!moved) return;
     solver_bodies[i].linear.xyz = me.v;
     solver_bodies[i].angular.xyz = me.w;
+}
+
+void main()
+{
+    if (step_aborted()) return;
+    uint colour = push.args.x;
+    if (colour >= TB_MAX_COLOURS) {
+        // The tail: its bodies one after the other, by one invocation.
+        if (gl_LocalInvocationIndex != 0u) return;
+        uint start = block_tail_start();
+        for (uint t = 0u; t < counters.colouring.z; t++)
+            bounce_body(block_list[start + t], uint(TB_MAX_COLOURS) + t);
+        return;
+    }
+    uvec4 listed;
+    uint lane;
+    if (!block_listed(colour, listed, lane) || lane != 0u) return;
+    bounce_body(listed, colour);
 }

@@ -3,9 +3,11 @@
 // After the count of the bodies of each colour, one workgroup: colour[c].y = first index of
 // colour c in block_list, colour[c].w = 0 (the fill's cursor), colour_dispatch[c] covering
 // colour[c].x bodies, BLOCK_LANES threads each, in workgroups of TB_SOLVER_WORKGROUP_SIZE;
-// solver.x = the colours in use (the highest + 1). A body left uncoloured, or coloured
-// beyond the colours the host recorded sweeps for (params.capacity.z), abandons the step
-// (TB_ABORT_COLOURS): the host records more rounds and runs it again.
+// solver.x = the colours in use (the highest + 1). A body coloured beyond the colours the
+// host recorded sweeps for (params.capacity.z), or left uncoloured while it recorded fewer
+// than TB_MAX_COLOURS, abandons the step (TB_ABORT_COLOURS): the host records more rounds
+// and runs it again. With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the
+// tail (list.comp), solved one at a time after the colours.
 #include "block.glsl"
 
 void main()
@@ -26,6 +28,7 @@ void main()
     for (uint c = 0u; c < TB_MAX_COLOURS; c++)
         if (counters.colour[c].x > 0u) used = c + 1u;
     counters.solver.x = used;
-    if (counters.solver.y > 0u || used > params.capacity.z)
+    bool short_of_colours = params.capacity.z < uint(TB_MAX_COLOURS);
+    if ((short_of_colours && counters.solver.y > 0u) || used > params.capacity.z)
         atomicOr(counters.state.x, TB_ABORT_COLOURS);
 }

@@ -1,18 +1,36 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Per body, after the colouring: push.args.x = 0 counts the dynamic bodies of each colour
-// (counters.colour[c].x; bodies left uncoloured in counters.solver.y), 1 writes each into its
-// colour's run of block_list (counters.colour[c].y on, in any order: bodies of one colour
-// never touch, so the order changes nothing), with its list's range.
+// (counters.colour[c].x; bodies left uncoloured in counters.solver.y) and flags the
+// uncoloured ones (body_claim, free in the block solver's step until integrate resets it)
+// for the compaction that lists them in body order for the tail (colour_work, the count in
+// counters.colouring.z); 1 writes each coloured body into its colour's run of block_list
+// (counters.colour[c].y on, in any order: bodies of one colour never touch, so the order
+// changes nothing), with its list's range; 2, after the compaction, writes the tail's
+// bodies after the colours' runs, in that order, and gives each its place in the tail
+// (body_colour, block_order).
 #include "block.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
+
+void write_tail(uint t)
+{
+    if (t >= counters.colouring.z) return;
+    uint i = colour_work[t];
+    block_list[block_tail_start() + t] = uvec4(i, block_start[i], block_fill[i], 0u);
+    body_colour[i] = uint(TB_MAX_COLOURS) | (t << 8);
+}
 
 void main()
 {
     uint i = body_thread_index();
     if (i >= params.counts.x || step_aborted()) return;
+    if (push.args.x == 2u) {
+        write_tail(i);
+        return;
+    }
     uint word = body_colour[i];
+    if (push.args.x == 0u) body_claim[i] = word == TB_BLOCK_NO_COLOUR ? 1u : 0u;
     if (word == TB_BLOCK_NOT_SOLVED) return;
     if (word == TB_BLOCK_NO_COLOUR) {
         if (push.args.x == 0u) atomicAdd(counters.solver.y, 1u);

@@ -19,6 +19,7 @@
 // the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
 // A body's points are spread over many threads instead of one thread walking them all: a
 // colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
+// push.args.x = TB_MAX_COLOURS: the tail instead (solve_tail).
 #include "listed.glsl"
 #include "../integrate/motion.glsl"
 
@@ -171,23 +172,20 @@ void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
 }
 
 // The multipliers' update of the item's point if its other body has already moved in this
-// sweep (a static one, or one of an earlier colour): both are where the sweep leaves them.
-void update_item(item it, uint colour, vec3 my_dp, vec3 my_v, bool last)
+// sweep (a static one, or one of an earlier place, block_order): both are where the sweep
+// leaves them.
+void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
 {
-    uint word = it.other_colour;
-    if (word != TB_BLOCK_NOT_SOLVED && (word & 0xffu) >= colour) return;
+    if (!block_moved_before(it.other_colour, order)) return;
     if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
     else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
 }
 
-void main()
+// Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
+// (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
+// together, `valid` false on lanes without a body (beyond the colour's bodies).
+void solve_body(uvec4 listed, uint lane, bool valid, uint order)
 {
-    if (step_aborted()) return;
-    uint colour = push.args.x;
-    if (colour >= TB_MAX_COLOURS) return;
-    uvec4 listed;
-    uint lane;
-    bool valid = block_listed(colour, listed, lane);
     uint i = listed.x, first = listed.y, items = listed.z;
     tb_gpu_solver_body me = solver_bodies[i];
     vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
@@ -221,7 +219,38 @@ void main()
     // by the last of their bodies to move, so no pass of its own after the sweep needs a
     // dispatch and a read of every contact.
     bool last = push.args.y != 0u;
-    if (has_kept) update_item(kept, colour, my_dp, my_v, last);
+    if (has_kept) update_item(kept, order, my_dp, my_v, last);
     for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
-        update_item(item_of(block_entries[first + at]), colour, my_dp, my_v, last);
+        update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
+}
+
+// The tail (push.args.x = TB_MAX_COLOURS, one workgroup): the bodies the colouring left
+// over, one after the other in their order in the tail, by the first BLOCK_LANES lanes of
+// one subgroup; each body sees the moves and multipliers of the ones before it. Serial, so
+// still Gauss-Seidel and repeatable; the usual step has no tail and returns at once.
+void solve_tail()
+{
+    uint count = counters.colouring.z;
+    uint lane = gl_SubgroupInvocationID;
+    if (count == 0u || gl_SubgroupID != 0u || lane >= BLOCK_LANES) return;
+    uint start = block_tail_start();
+    for (uint t = 0u; t < count; t++) {
+        solve_body(block_list[start + t], lane, true, uint(TB_MAX_COLOURS) + t);
+        subgroupMemoryBarrierBuffer();
+        subgroupBarrier();
+    }
+}
+
+void main()
+{
+    if (step_aborted()) return;
+    uint colour = push.args.x;
+    if (colour >= TB_MAX_COLOURS) {
+        solve_tail();
+        return;
+    }
+    uvec4 listed;
+    uint lane;
+    bool valid = block_listed(colour, listed, lane);
+    solve_body(listed, lane, valid, colour);
 }

@@ -89,10 +89,13 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BLOCK_FILL      27 /* uint[]: entries of each body's list (filled by atomics, then
                                       sorted so the order is the pairs') */
 #define TB_BIND_BODY_COLOUR     28 /* uint[]: each dynamic body's colour | the colouring round that
-                                      gave it << 8 (TB_BLOCK_NO_COLOUR: none yet) */
-#define TB_BIND_BLOCK_LIST      29 /* uvec4[]: dynamic bodies grouped by colour (counters.colour):
-                                      x the body, y its first entry, z its entry count, so a
-                                      sweep finds its list with one load; w unused */
+                                      gave it << 8 (TB_BLOCK_NO_COLOUR: none yet); a body the
+                                      colouring left to the tail: TB_MAX_COLOURS | its place
+                                      in the tail << 8 */
+#define TB_BIND_BLOCK_LIST      29 /* uvec4[]: dynamic bodies grouped by colour (counters.colour),
+                                      then the tail's (counters.colouring.z of them): x the
+                                      body, y its first entry, z its entry count, so a sweep
+                                      finds its list with one load; w unused */
 #define TB_BIND_BLOCK_TARGET    30 /* vec4[2 * body cap], only in a world that uses the block
                                       solver: each body's free motion over the step (its
                                       delta_position, delta_rotation without contacts), the
@@ -193,7 +196,8 @@ TB_STRUCT(tb_gpu_counters) {
                                  counts every constraint here, colour_finish subtracts the
                                  coloured ones), z batches (subgroup-wide), w contact points */
     TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z the constraints
-                                 left to solve_tail (listed in work list 0), w unused */
+                                 left to solve_tail (listed in work list 0; the block solver:
+                                 the bodies of its tail), w unused */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */

@@ -77,6 +77,20 @@ uint32_t tb_block_colouring_rounds(uint32_t colours)
     return 2 * colours + 8;
 }
 
+/* The bodies a colouring of all TB_MAX_COLOURS left over (list.comp flagged them), in body
+ * order so the tail's serial solve is repeatable, then written after the colours' runs of
+ * block_list. The list fits colour_work: a body is left over only when it has a contact, so
+ * there are at most two per pair. */
+static tb_result record_tail_list(const tb_block_solver* s, tb_pass_list* list,
+                                  VkBuffer counters, const tb_block_lists* lists)
+{
+    tb_result r = tb_prims_compact(lists->prims, list, lists->tail_flags, lists->tail,
+                                   lists->slots, lists->body_capacity, lists->tail_count,
+                                   lists->scratch);
+    if (!r) r = per_body(s, list, s->list, counters, 2);
+    return r;
+}
+
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
                                     uint32_t colours)
@@ -94,11 +108,13 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     if (!r) r = per_body(s, list, s->list, counters, 0);
     if (!r) r = add(s, list, s->finish, TB_DISPATCH_FIXED, counters, 0, 0);
     if (!r) r = per_body(s, list, s->list, counters, 1);
+    if (!r && colours == TB_MAX_COLOURS) r = record_tail_list(s, list, counters, lists);
     return r;
 }
 
 /* One pass of `pipeline` over each colour's bodies (its dispatch covers BLOCK_LANES threads
- * a body), with push args (colour, y, z). */
+ * a body), with push args (colour, y, z); with all TB_MAX_COLOURS, then one workgroup over
+ * the tail (colour TB_MAX_COLOURS), which returns at once when the tail is empty. */
 static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                               VkPipeline pipeline, uint32_t colours, uint32_t y, uint32_t z)
 {
@@ -109,6 +125,12 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
                                          c, y, z);
         pass.writes_no_arguments = 1;
         r = tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
+    }
+    if (!r && colours == TB_MAX_COLOURS) {
+        tb_pass tail = tb_pass_with_args(pipeline, TB_DISPATCH_FIXED, counters, 0,
+                                         TB_MAX_COLOURS, y, z);
+        tail.writes_no_arguments = 1;
+        r = tb_pass_list_add(list, s->pipelines->gpu->diag, &tail);
     }
     return r;
 }

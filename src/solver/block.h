@@ -35,10 +35,14 @@ typedef struct tb_block_solver {
 } tb_block_solver;
 
 /// What building the contact lists needs: the list starts (uint per body slot, scanned in
-/// place), the number of body slots (a GPU uint), the body capacity and scan scratch for it.
+/// place), the number of body slots (a GPU uint), the body capacity and scan scratch for it;
+/// and for the tail (the bodies a colouring of all TB_MAX_COLOURS leaves over) the flags
+/// list.comp writes (body_claim), where the compaction lists them (colour_work) and counts
+/// them (counters.colouring.z).
 typedef struct tb_block_lists {
     tb_prims* prims;
     tb_gpu_ptr starts, slots, scratch;
+    tb_gpu_ptr tail_flags, tail, tail_count;
     uint32_t body_capacity;
 } tb_block_lists;
 
@@ -69,14 +73,17 @@ uint32_t tb_block_colouring_rounds(uint32_t colours);
 
 /// The contact list of every dynamic body and the colouring of the dynamic bodies:
 /// reset, count, scan, fill, sort, tb_block_colouring_rounds(colours) colouring rounds,
-/// then the bodies listed by colour. `counters` is the buffer bound at TB_BIND_COUNTERS.
+/// then the bodies listed by colour; with all TB_MAX_COLOURS, then the bodies the colouring
+/// left over listed, in body order, as the tail. `counters` is the buffer bound at
+/// TB_BIND_COUNTERS.
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
                                     uint32_t colours);
 
 /// The iterations (after the solver records hold the velocities with gravity and the
 /// inertial pose): start, guess, then `iterations` sweeps, each a solve of colours
-/// 0..colours-1 that also updates the multipliers; then the velocities, and with
+/// 0..colours-1 (and, with all TB_MAX_COLOURS, of the tail, one body at a time) that also
+/// updates the multipliers; then the velocities, and with
 /// `restitution` (some shape of the world has restitution) a pass over the colours that
 /// makes fast contacts bounce (glsl/block/bounce.comp). (Sweeping the colours back on every
 /// other iteration, a symmetric Gauss-Seidel, measured worse: a 20-box column sank 8.4 cm

@@ -117,6 +117,9 @@ static void block_colour_stage(builder* b)
         .prims = &w->prims, .starts = tb_gpu_ptr_of(&sim->body[TB_SIM_BLOCK_START], 0),
         .slots = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, grid) + 8),
         .scratch = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_SCRATCH], 0),
+        .tail_flags = tb_gpu_ptr_of(&sim->body[TB_SIM_BODY_CLAIM], 0),
+        .tail = tb_gpu_ptr_of(&sim->pair[TB_SIM_COLOUR_WORK], 0),
+        .tail_count = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, colouring) + 8),
         .body_capacity = sim->body_capacity,
     };
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
