@@ -18,10 +18,12 @@
 #include "world.glsl"
 #include "quat.glsl"
 
-// Invocations that share a body in a sweep (solve.comp): 8, or the subgroup when it is
-// narrower (lavapipe at 128-bit vectors: 4). Four or more, so the four points of an entry
-// are in one pass of neighbouring lanes.
-const uint BLOCK_LANES = SUBGROUP_SIZE < 8u ? SUBGROUP_SIZE : 8u;
+// Invocations that share a body in a sweep (solve.comp): on a GPU 8, or the subgroup when it
+// is narrower, so a colour keeps many threads busy each with a short chain of loads; on a
+// CPU device 1, as its lanes are SIMD lanes of one core that each pay for the whole 6x6
+// solve (lavapipe, deep pile of 4,000: solve 356 ms a step with 8 lanes a body, 217 with 4
+// or 2, 168 with 1).
+const uint BLOCK_LANES = CPU_DEVICE != 0u ? 1u : SUBGROUP_SIZE < 8u ? SUBGROUP_SIZE : 8u;
 
 bool block_dynamic(uint i)
 {

@@ -105,6 +105,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 /* Specialization constant ids, set for every pipeline. */
 #define TB_SPEC_WORKGROUP_SIZE  0  /* local_size_x */
 #define TB_SPEC_SUBGROUP_SIZE   1  /* the device's subgroup size: 8 lavapipe, 32 NVIDIA, 64 AMD */
+#define TB_SPEC_CPU_DEVICE      2  /* 1 on a CPU implementation (lavapipe), else 0 */
 
 /* Reasons the GPU abandoned a step (tb_gpu_counters.state.x). A stage that sees any flag
  * does nothing, so the bodies keep the state they had before the step; the host grows

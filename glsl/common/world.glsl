@@ -10,6 +10,7 @@
 
 layout(local_size_x_id = TB_SPEC_WORKGROUP_SIZE) in;
 layout(constant_id = TB_SPEC_SUBGROUP_SIZE) const uint SUBGROUP_SIZE = 32;
+layout(constant_id = TB_SPEC_CPU_DEVICE) const uint CPU_DEVICE = 0;
 
 layout(set = 0, binding = TB_BIND_PARAMS, std140) uniform Params { tb_gpu_params params; };
 layout(set = 0, binding = TB_BIND_BODY_POS, std430) buffer BodyPos { vec4 body_pos[]; };

@@ -268,12 +268,13 @@ tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint3
     tb_result r = tb_vk_check(diag, vkCreateShaderModule(p->gpu->device, &module_info, NULL, &module),
                               "vkCreateShaderModule");
     if (r) return r;
-    uint32_t values[2] = { workgroup_size, p->gpu->subgroup_size };
-    VkSpecializationMapEntry entries[2] = {
+    uint32_t values[3] = { workgroup_size, p->gpu->subgroup_size, p->gpu->is_cpu ? 1u : 0u };
+    VkSpecializationMapEntry entries[3] = {
         { TB_SPEC_WORKGROUP_SIZE, 0, sizeof(uint32_t) },
         { TB_SPEC_SUBGROUP_SIZE, sizeof(uint32_t), sizeof(uint32_t) },
+        { TB_SPEC_CPU_DEVICE, 2 * sizeof(uint32_t), sizeof(uint32_t) },
     };
-    VkSpecializationInfo spec = { 2, entries, sizeof values, values };
+    VkSpecializationInfo spec = { 3, entries, sizeof values, values };
     VkComputePipelineCreateInfo info = {
         .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
         .stage = {
