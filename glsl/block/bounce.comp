@@ -99,7 +99,7 @@ void bounce_body(uvec4 listed, uint order)
             float e, before;
             if (!bounces(p, k, e, before)) continue;
             uint word = body_colour[entry.y];
-            bool other_first = word != TB_BLOCK_NOT_SOLVED && block_order(word) < order;
+            bool other_first = word != TB_BLOCK_NOT_SOLVED && block_moved_before(word, order);
             if (other_first != (pass == 0u)) continue;
             bool is_b = block_is_b(entry.x);
             float size = other_first ? constraints[p].p[k].mass.w

@@ -1,8 +1,9 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Per body, after the colouring: push.args.x = 0 counts the dynamic bodies of each colour
-// (counters.colour[c].x; bodies left uncoloured in counters.solver.y) and flags the
-// uncoloured ones (body_claim, free in the block solver's step until integrate resets it)
+// (counters.colour[c].x; bodies left uncoloured in counters.solver.y) and, when the host
+// records the tail (all TB_MAX_COLOURS), flags the uncoloured ones (body_claim, free in the
+// block solver's step until integrate resets it)
 // for the compaction that lists them in body order for the tail (colour_work, the count in
 // counters.colouring.z); 1 writes each coloured body into its colour's run of block_list
 // (counters.colour[c].y on, in any order: bodies of one colour never touch, so the order
@@ -30,7 +31,8 @@ void main()
         return;
     }
     uint word = body_colour[i];
-    if (push.args.x == 0u) body_claim[i] = word == TB_BLOCK_NO_COLOUR ? 1u : 0u;
+    bool tail_recorded = params.capacity.z == uint(TB_MAX_COLOURS);
+    if (push.args.x == 0u && tail_recorded) body_claim[i] = word == TB_BLOCK_NO_COLOUR ? 1u : 0u;
     if (word == TB_BLOCK_NOT_SOLVED) return;
     if (word == TB_BLOCK_NO_COLOUR) {
         if (push.args.x == 0u) atomicAdd(counters.solver.y, 1u);
