@@ -31,7 +31,7 @@ uint np_axis_code(uint kind, uint i, uint j)
 
 void np_set_axis(np_target t, uint code, float separation)
 {
-    manifolds[t.slot].axis = uvec4(code, floatBitsToUint(separation), 0u, 0u);
+    manifolds[t.slot].axis.xyz = uvec3(code, floatBitsToUint(separation), 0u);
 }
 
 // ---- face axes -----------------------------------------------------------------------------
