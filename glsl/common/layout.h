@@ -471,9 +471,10 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
-                                 y its separation (float bits), z 1 while its points are
-                                 left to narrowphase/hull_points, w the block solver's stiffness
-                                 of the pair (float bits; see glsl/block/) */
+                                 y its separation (float bits), z while its points are
+                                 left to narrowphase/hull_points the axis of largest
+                                 separation (never 0), w the block solver's stiffness of
+                                 the pair (float bits; see glsl/block/) */
     TB_VEC4 slip[TB_MAX_MANIFOLD_POINTS / 2]; /* the block solver's static friction: how far
                                  point k's two surfaces have moved apart along the tangents
                                  since it began to stick (m), in slip[k / 2].xy (k even) or .zw */

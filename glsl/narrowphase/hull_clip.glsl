@@ -14,7 +14,8 @@
 // the line the polygon runs along to the next corner (an incident edge or a reference
 // side), and a crossing made on that line inherits it.
 //
-// Edge axis: one point, midway between the closest points of the two edges.
+// Edge axis: one point, midway between the closest points of the two edges (none for hulls
+// apart whose edges do not cross seen along the axis).
 //
 // Feature keys, in the canonical order of the pair (first A, second B):
 //   face contact: bit 30 set when the reference face is B's; bits 22-29 the reference face,
@@ -234,8 +235,13 @@ uint np_hull_edge_contact(np_target t, np_body a, np_hull ha, uint ia, np_body b
     vec3 b0 = b.pos + b.rot * np_hull_vertex(hb, vb.x), b1 = b.pos + b.rot * np_hull_vertex(hb, vb.y);
     vec3 pa, pb;
     np_segments_closest(a0, a1 - a0, b0, b1 - b0, pa, pb);
-    float separation = dot(pb - pa, n);
-    if (separation >= margin) return 0u;
+    vec3 gap = pb - pa;
+    float separation = dot(gap, n);
+    // Apart, with the closest points beside each other rather than along the axis (the
+    // edges do not cross seen along it, so a segment end clamped them): the hulls are
+    // nearest at a corner, which no edge point describes; a later step's face axis sees it.
+    float beside = length(gap - n * separation);
+    if (separation >= margin || (separation > 0.0 && beside > 1.0e-4)) return 0u;
     np_emit(t, 0u, 0.5 * (pa + pb), separation, 0x80000000u | (ia << 15u) | ib);
     return 1u;
 }

@@ -11,16 +11,30 @@
 //    a resting contact keeps its axis, its reference face and its feature keys from step to
 //    step. It is cached too, with its separation.
 // 4. Points: clipping for a face axis, closest edge points for an edge axis (hull_clip.glsl),
-//    in a pass of their own (hull_points.comp) from the axis cached in step 3.
+//    in a pass of their own (hull_points.comp) from the axis cached in step 3; the axis of
+//    largest separation when the cached one leaves none.
 #ifndef TB_NP_HULL_HULL_GLSL
 #define TB_NP_HULL_HULL_GLSL
 
+// The axis of largest separation among the three candidates, without the tie rule (faces
+// of A, then of B, then edges on exact ties).
+uint np_strict_axis(float sep_a, uint face_a, float sep_b, uint face_b, float sep_e,
+                    uint edge_a, uint edge_b)
+{
+    if (sep_e > sep_a && sep_e > sep_b) return np_axis_code(NP_AXIS_EDGES, edge_a, edge_b);
+    if (sep_b > sep_a) return np_axis_code(NP_AXIS_FACE_B, 0u, face_b);
+    return np_axis_code(NP_AXIS_FACE_A, 0u, face_a);
+}
+
 // Steps 1-3: the axis, cached in the manifold. True when the pair touches within the margin
-// (its points are then step 4's, np_hull_hull_points on the cached axis code).
-bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin)
+// (its points are then step 4's, np_hull_hull_points on the cached axis code); `strict` is
+// then, for hulls that overlap, the axis of largest separation, which the tie rule may have
+// passed over (else the cached axis again).
+bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint strict)
 {
     np_hull ha = np_hull_of(a), hb = np_hull_of(b);
     np_frame b_in_a = np_frame_between(a, b), a_in_b = np_frame_between(b, a);
+    strict = 0u;
 
     uint cached = t.prev != NP_NONE ? prev_manifolds[t.prev].axis.x : 0u;
     if (cached != 0u) {
@@ -55,12 +69,18 @@ bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin)
         np_set_axis(t, np_axis_code(NP_AXIS_FACE_B, 0u, face_b), sep_b);
     else
         np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
+    // Only an overlap is sure to lie over the strict axis's features; hulls apart may be
+    // nearest at corners no axis names, and the kept axis's speculative points (or none)
+    // are as good as any.
+    bool overlap = max(sep_e, max(sep_a, sep_b)) < 0.0;
+    strict = overlap ? np_strict_axis(sep_a, face_a, sep_b, face_b, sep_e, edge_a, edge_b)
+                     : manifolds[t.slot].axis.x;
     return true;
 }
 
-// Step 4: the points of the touching pair along the axis `code` step 3 chose.
-uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, float margin,
-                         out vec3 normal)
+// The points of the touching pair along the axis `code`.
+uint np_hull_hull_points_on(np_target t, np_body a, np_body b, uint code, float margin,
+                            out vec3 normal)
 {
     np_hull ha = np_hull_of(a), hb = np_hull_of(b);
     np_frame b_in_a = np_frame_between(a, b), a_in_b = np_frame_between(b, a);
@@ -78,11 +98,28 @@ uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, float mar
     return np_hull_face_contact(t, a, ha, j, hb, b_in_a, j << 22u, margin);
 }
 
+// Step 4: the points along the axis step 3 chose (`code`). A face the tie rule kept can leave
+// no corner within the margin: the hulls overlap beside the face, not over it (rocks of many
+// small faces pressed together in a pile, the kept face the best axis no longer). The axis
+// of largest separation (`strict`) then gives the points: along it the overlap lies over its
+// face, or across its edges, so it has a point. (Without it such a pair got none for steps
+// on end and sank 5 to 7 cm into each other.)
+uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, uint strict,
+                         float margin, out vec3 normal)
+{
+    uint count = np_hull_hull_points_on(t, a, b, code, margin, normal);
+    if (count == 0u && strict != code)
+        count = np_hull_hull_points_on(t, a, b, strict, margin, normal);
+    return count;
+}
+
 // The first pass's part (contacts.comp): the axis, and the points left to the second pass
-// (hull_points.comp) by marking the manifold (axis.z = 1). Returns no points.
+// (hull_points.comp) by marking the manifold (axis.z = the strict axis, never 0). Returns
+// no points.
 uint np_hull_hull_deferred(np_target t, np_body a, np_body b, float margin)
 {
-    if (np_hull_hull_axis(t, a, b, margin)) manifolds[t.slot].axis.z = 1u;
+    uint strict;
+    if (np_hull_hull_axis(t, a, b, margin, strict)) manifolds[t.slot].axis.z = strict;
     return 0u;
 }
 

@@ -3,9 +3,9 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // Narrowphase, second pass: the points of the hull pairs the first pass (contacts.comp)
-// found touching and marked (manifolds[p].axis.z = 1), from the axis it cached there:
-// clipping and reduction for a face axis, the closest edge points for an edge axis
-// (hull_hull.glsl step 4). One thread per pair; unmarked pairs return at once. Dispatched
+// found touching and marked (manifolds[p].axis.z, the axis of largest separation, never 0),
+// from the axis it cached there: clipping and reduction for a face axis, the closest edge
+// points for an edge axis (hull_hull.glsl step 4). One thread per pair; unmarked pairs return at once. Dispatched
 // indirectly over counters.pair_dispatch.
 #include "world.glsl"
 #include "quat.glsl"
@@ -21,8 +21,8 @@ uint hull_points(uint p)
 {
     np_pair q = np_pair_load(p);
     vec3 normal;
-    uint count = np_hull_hull_points(q.t, q.first, q.second, manifolds[p].axis.x, q.margin,
-                                     normal);
+    uvec4 axis = manifolds[p].axis;
+    uint count = np_hull_hull_points(q.t, q.first, q.second, axis.x, axis.z, q.margin, normal);
     manifolds[p].axis.z = 0u;
     np_pair_finish(q, count, normal);
     return count;
