@@ -138,12 +138,14 @@ typedef struct tb_world_def {
     /// more (the step is then run again, see tb_world_stats.steps_redone). 0: 4 per body
     /// of initial_body_capacity.
     uint32_t initial_pair_capacity;
-    /// Substeps of the contact solver per step: each applies gravity, warm-starts, solves,
-    /// moves the bodies and relaxes (a soft step, as Box2D v3 does it). More substeps make
-    /// tall stacks and heavy-on-light contacts stiffer (see contact_hertz). Default 6.
-    /// In [1, 64].
+    /// Substeps per step. The soft step (TB_SOLVER_SOFT_STEP): each applies gravity,
+    /// warm-starts, solves, moves the bodies and relaxes, as Box2D v3 does it; more
+    /// substeps make tall stacks and heavy-on-light contacts stiffer (see contact_hertz).
+    /// The block solver (the default) predicts each body's free motion in this many pieces
+    /// (a projectile's arc is the same with either solver). Default 6. In [1, 64].
     uint32_t substeps;
-    /// Velocity iterations of the contact solver per substep. Default 1. In [1, 1000].
+    /// Velocity iterations of the soft step per substep. Default 1. In [1, 1000]. (The
+    /// block solver's sweeps are tb_world_set_solver's `iterations`.)
     uint32_t solver_iterations;
     /// Contact margin, m: shapes closer than this get (speculative) contact points, so a
     /// resting contact does not flicker on and off. Default 0.02. >= 0.
@@ -151,12 +153,14 @@ typedef struct tb_world_def {
     /// Approach speed, m/s, above which restitution applies; slower impacts do not bounce,
     /// so resting bodies settle. Default 0.5. >= 0.
     float restitution_threshold;
-    /// Stiffness of contacts, Hz: penetration is pushed out like a damped spring of this
-    /// frequency, twice as stiff against static bodies. A load compresses a contact by about
-    /// g / (2 pi hertz)^2 per unit of load-to-contact mass ratio: at 60 Hz a column of ten
-    /// 1 m boxes settles 6 mm, at 30 Hz 28 mm. Stiffer needs more substeps: it is capped at
-    /// a quarter of the substep rate, and above about a sixth a thin wall of boxes starts
-    /// to rock. Default 60 (a sixth of the rate at 60 steps/s and 6 substeps). 0: the cap.
+    /// Stiffness of the soft step's contacts, Hz (the block solver's contacts are hard; it
+    /// ignores this and the next two settings): penetration is pushed out like a damped
+    /// spring of this frequency, twice as stiff against static bodies. A load compresses a
+    /// contact by about g / (2 pi hertz)^2 per unit of load-to-contact mass ratio: at 60 Hz
+    /// a column of ten 1 m boxes settles 6 mm, at 30 Hz 28 mm. Stiffer needs more
+    /// substeps: it is capped at a quarter of the substep rate, and above about a sixth a
+    /// thin wall of boxes starts to rock. Default 60 (a sixth of the rate at 60 steps/s and
+    /// 6 substeps). 0: the cap.
     float contact_hertz;
     /// Damping ratio of that spring; above 1 it is overdamped (no bounce from pushing out).
     /// Default 10. >= 0.
@@ -205,29 +209,30 @@ TB_API tb_vec3 tb_world_get_gravity(const tb_world* world);
 
 /// The contact solver a world steps with (tb_world_set_solver). Pinned to 32 bits.
 typedef enum tb_solver_kind {
-    /// The soft step (the default): tb_world_def's substeps, each one sweep over contacts
-    /// that are stiff damped springs (contact_hertz). Smooth and cheap, but a load sinks
-    /// into its springs: a column of 20 boxes sags 27 mm, and deep piles and tall
-    /// pyramids can lean and fall.
+    /// The soft step: tb_world_def's substeps, each with `solver_iterations` sweeps over
+    /// contacts that are stiff damped springs (contact_hertz). Smooth and cheap, but a
+    /// load sinks into its springs: a column of 20 boxes sags 27 mm, and deep piles and
+    /// tall pyramids can lean and fall.
     TB_SOLVER_SOFT_STEP = 0,
-    /// The block solver: hard contacts reached by an augmented Lagrangian; each sweep
-    /// moves every dynamic body by one 6x6 Newton step on its inertia and its contacts
-    /// (bodies of one colour at once), `iterations` sweeps a step. Columns, deep piles and
-    /// pyramids of 5,000 boxes stand (a column of 20 sinks 4 mm) at about the soft step's
-    /// cost on a GPU. Experimental: the README's limitations say what it does not do yet.
+    /// The block solver (the default): hard contacts reached by an augmented Lagrangian;
+    /// each sweep moves every dynamic body by one 6x6 Newton step on its inertia and its
+    /// contacts (bodies of one colour at once), `iterations` sweeps a step (default 30).
+    /// Columns, deep piles and pyramids of 5,000 boxes stand (a column of 20 sinks 4 mm)
+    /// at about the soft step's cost on a GPU. It predicts free motion in tb_world_def's
+    /// substeps and ignores solver_iterations and the contact spring settings.
     TB_SOLVER_BLOCK = 1,
     TB_SOLVER_FORCE_32 = 0x7fffffff
 } tb_solver_kind;
 
 /// Choose the contact solver, before the world's first step (after it: an error, and
-/// nothing changes). `iterations`: the block solver's sweeps a step, in [1, 1000], 0 for
-/// its default (30); the soft step takes its substeps and iterations from tb_world_def and
-/// ignores it. The environment variable TUMBLE_SOLVER=block chooses the block solver at
-/// creation.
+/// nothing changes). A world starts with the block solver; the environment variable
+/// TUMBLE_SOLVER=soft gives it the soft step at creation instead. `iterations`: the block
+/// solver's sweeps a step, in [1, 1000], 0 for its default (30); the soft step takes its
+/// substeps and iterations from tb_world_def and ignores it.
 TB_API tb_result tb_world_set_solver(tb_world* world, tb_solver_kind solver,
                                      uint32_t iterations);
 /// The world's contact solver, and the block solver's sweeps a step in *iterations (may be
-/// NULL). A NULL world gives TB_SOLVER_SOFT_STEP.
+/// NULL). A NULL world gives the default, TB_SOLVER_BLOCK.
 TB_API tb_solver_kind tb_world_get_solver(const tb_world* world, uint32_t* iterations);
 
 /// Advance the simulation by dt seconds (usually 1/60). One queue submission; returns when

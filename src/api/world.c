@@ -121,7 +121,7 @@ tb_result tb_world_set_solver(tb_world* w, tb_solver_kind solver, uint32_t itera
 tb_solver_kind tb_world_get_solver(const tb_world* w, uint32_t* iterations)
 {
     if (iterations) *iterations = w ? w->block_settings.iterations : 0;
-    return w && w->block_solver ? TB_SOLVER_BLOCK : TB_SOLVER_SOFT_STEP;
+    return !w || w->block_solver ? TB_SOLVER_BLOCK : TB_SOLVER_SOFT_STEP;
 }
 
 tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)

@@ -1,8 +1,8 @@
 /* The block solver: the host side of glsl/block/ (augmented vertex block descent).
  *
- * EXPERIMENTAL, not the default: a world uses it once tb_world_set_solver chose it before
- * the first step (TB_SOLVER_BLOCK), or when the environment variable TUMBLE_SOLVER=block is
- * set at its creation (TUMBLE_BLOCK overrides its settings while it is being tuned).
+ * The default solver: a world uses it unless tb_world_set_solver chose the soft step before
+ * the first step, or the environment variable TUMBLE_SOLVER=soft was set at its creation
+ * (TUMBLE_BLOCK overrides its settings while it is being tuned).
  *
  * Instead of the soft step's constraints coloured and solved one at a time, it colours the
  * dynamic bodies (no two touching bodies share a colour) and moves each body in turn to

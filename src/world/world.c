@@ -85,8 +85,9 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->broadphase_kind = broadphase;
     w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
+    /* The block solver unless the environment asks for the soft step (TUMBLE_SOLVER=soft). */
     const char* solver = getenv("TUMBLE_SOLVER");
-    w->block_solver = solver && strcmp(solver, "block") == 0;
+    w->block_solver = !(solver && strcmp(solver, "soft") == 0);
     w->block_settings = tb_block_default_settings();
     w->max_bodies = def->max_bodies ? def->max_bodies : DEFAULT_MAX_BODIES;
     w->max_shapes = def->max_shapes ? def->max_shapes : DEFAULT_MAX_SHAPES;

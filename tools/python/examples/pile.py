@@ -10,7 +10,7 @@ with tumble.World() as world:
     turns = rng.normal(size=(27, 4))
     boxes = world.add_bodies(world.box((0.5, 0.5, 0.5)), start,
                              rotations=turns / np.linalg.norm(turns, axis=1, keepdims=True))
-    for step in range(1, 7):
+    for step in range(1, 9):
         world.step(1 / 60, n=30)
         y = world.transforms(boxes)[0][:, 1]
         print(f"t = {step / 2:.1f} s: heights {y.min():.2f} to {y.max():.2f} m, "

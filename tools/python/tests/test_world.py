@@ -50,16 +50,18 @@ def test_pile_settles_in_its_container(make_world):
 
 
 def test_block_solver_holds_a_column(make_world):
-    """The block solver, chosen before the first step, holds a column of 10 unit boxes
-    (hard contacts: the top box sinks well under the soft step's 6.8 mm); the choice is
-    refused once the world has stepped, and an unknown solver by name."""
+    """The block solver, the default, holds a column of 10 unit boxes (hard contacts: the
+    top box sinks well under the soft step's 6.8 mm); the choice is refused once the world
+    has stepped, and an unknown solver by name."""
     world = make_world()
-    assert world.solver == "soft"
+    assert world.solver == "block"
     world.add_bodies(world.box((20, 0.5, 20)), np.array([[0, -0.5, 0]]), static=True)
     column = world.add_bodies(world.box((0.5, 0.5, 0.5)),
                               np.array([[0, 0.5 + i, 0] for i in range(10)]))
     with pytest.raises(ValueError, match="solver must be one of 'soft', 'block', got 'stiff'"):
         world.set_solver("stiff")
+    world.set_solver("soft")
+    assert world.solver == "soft"
     world.set_solver("block", iterations=30)
     assert world.solver == "block"
     world.step(1 / 60, n=300)

@@ -453,9 +453,10 @@ class World:
         self._check(lib.tb_world_set_gravity(self._handle(), g))
 
     def set_solver(self, solver, iterations=0):
-        """Choose the contact solver before the world's first step: "soft" (the soft step,
-        the default) or "block" (hard contacts: deep piles and tall pyramids stand), the block
-        solver with `iterations` sweeps a step (0: its default, 30). tb_world_set_solver."""
+        """Choose the contact solver before the world's first step: "block" (the default:
+        hard contacts, deep piles and tall pyramids stand), with `iterations` sweeps a step
+        (0: its default, 30), or "soft" (the soft step: contacts are stiff springs, set by
+        the world's substeps, solver_iterations and contact_hertz). tb_world_set_solver."""
         if solver not in SOLVERS:
             raise ValueError("solver must be one of %s, got %r"
                              % (", ".join(repr(k) for k in SOLVERS), solver))
