@@ -247,7 +247,8 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
     bvec3 on;
     vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
     vec4 impulse = vec4(f * h, f.x * h);
-    if (last) impulse.x = max(impulse.x - carried_impact(p, k, q), 0.0);
+    float impact = last ? carried_impact(p, k, q) : 0.0;
+    impulse.x = max(impulse.x - impact, 0.0);
     manifolds[p].impulse[k] = impulse;
     float stiffness = q.stiffness;
     if (on.x) {
@@ -256,7 +257,8 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
     }
     if (last) {
         set_manifold_slip(p, k, on.y ? C.yz : vec2(0.0));
-        if (q.unit > 0.0) atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
+        if (q.unit > 0.0 && impact == 0.0)
+            atomicMax(manifolds[p].axis.w, floatBitsToUint(stiffness / q.unit));
     }
 }
 
