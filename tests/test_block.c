@@ -175,9 +175,10 @@ static void test_head_on_bounce_trades_velocities(void** state)
 }
 
 /* A hull, and a box, thrown at a thin static wall at 100 m/s without gravity stop on their
- * face and stay there: neither the force that stopped them is carried into the next step
- * (it threw the hull back at 30 m/s) nor the stiffness the impact grew (with it the box
- * crept off the wall at 5 mm/s), and they leave with no speed. */
+ * face and stay there: the force that stopped them is not carried into the next step (it
+ * threw the hull back at 30 m/s), nor what was left of it once the impact's share was taken
+ * off (with the stiffness the impact grew it kicked the box off the wall at 5 mm/s), and
+ * they leave with no speed. */
 static void impact_is_not_carried(int box)
 {
     tb_world_def wd = tb_default_world_def();
