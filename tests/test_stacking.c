@@ -3,12 +3,12 @@
  * (tools/scenes/stacks.c, hulls.c), so the bench's `drift` and these tests measure the same
  * thing; here every step is read back, so a box that sways and comes back still fails.
  *
- * World settings are the defaults (6 substeps of 1 iteration, contacts at 60 Hz, 60 steps
- * per second): a stack that stands only with more substeps or a smaller step does not stand
- * for a user who leaves them alone. Measured on lavapipe: the column's top box settles
- * 6.8 mm into its contacts (ten contact springs under loads of one to ten boxes) and stays
- * there; the pyramid's apex 1.9 mm. The split-impulse solver before the soft step let the
- * column rock by 2.8 cm.
+ * World settings are the defaults (the block solver, 60 steps per second): a stack that
+ * stands only with more iterations or a smaller step does not stand for a user who leaves
+ * them alone. Measured on lavapipe: the column's top box moves 2.2 mm at most, the
+ * pyramid's apex 0.2 mm, the 1,000 hulls overlap 0.9 mm at most after 300 steps. (With the
+ * soft step the column's top settled 6.8 mm into its contacts, the apex 1.9 mm; the
+ * split-impulse solver before it let the column rock by 2.8 cm.)
  */
 #include "harness.h"
 
