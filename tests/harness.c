@@ -2,6 +2,7 @@
 #include "harness.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -300,4 +301,12 @@ double th_bounce_apex(tb_world* w, float restitution, float drop)
     }
     assert_true(bounced);
     return apex;
+}
+
+int th_large_scene_runs(const char* what)
+{
+    const char* width = getenv("LP_NATIVE_VECTOR_WIDTH");
+    if (!width || strcmp(width, "128") != 0 || getenv("TB_ALL_WIDTHS")) return 1;
+    print_message("  %s runs at LP_NATIVE_VECTOR_WIDTH=256 only (TB_ALL_WIDTHS=1: here too)\n", what);
+    return 0;
 }

@@ -39,6 +39,12 @@ const th_log* th_world_log(const tb_world* w);
 /// Asserts no validation message and (unless allowed) no logged warning, then destroys.
 void th_world_destroy(tb_world* w);
 
+/// Whether a large scene (a pile of thousands of bodies settling for hundreds of steps) runs
+/// in this run: on lavapipe only at its native 256-bit width, as the scene tests the solver,
+/// not the subgroup width (the unit tests cover both widths), and make test runs both widths
+/// at once on two cores. TB_ALL_WIDTHS=1 runs them at every width. Prints why when not.
+int th_large_scene_runs(const char* what);
+
 /* ---- deterministic random numbers (xorshift64*) --------------------------------------- */
 
 typedef struct th_rng { uint64_t s; } th_rng;
