@@ -574,11 +574,11 @@ static void thull_make(thull* h, hull_family family, uint32_t n, double rx, doub
     thull_finish(h);
 }
 
+static void random_dir(th_rng* g, double out[3]);
+
 /* A rock as games make them: the hull (built by tb_shape_create_hull; only the points are
  * set here) of 20 points on an ellipsoid of semi-axes 0.15-0.3 m, each point's radius
  * jittered by 15 %: some 36 small faces, none much better than its neighbours as an axis. */
-static void random_dir(th_rng* g, double out[3]);
-
 static void thull_rock(thull* h, th_rng* g)
 {
     memset(h, 0, sizeof *h);

@@ -63,18 +63,21 @@ bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint
     }
 
     bool ref_b = np_clearly_better(sep_b, sep_a);
-    if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a))
-        np_set_axis(t, np_axis_code(NP_AXIS_EDGES, edge_a, edge_b), sep_e);
-    else if (ref_b)
-        np_set_axis(t, np_axis_code(NP_AXIS_FACE_B, 0u, face_b), sep_b);
-    else
-        np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
+    uint kept = np_axis_code(NP_AXIS_FACE_A, 0u, face_a);
+    float kept_sep = sep_a;
+    if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a)) {
+        kept = np_axis_code(NP_AXIS_EDGES, edge_a, edge_b);
+        kept_sep = sep_e;
+    } else if (ref_b) {
+        kept = np_axis_code(NP_AXIS_FACE_B, 0u, face_b);
+        kept_sep = sep_b;
+    }
+    np_set_axis(t, kept, kept_sep);
     // Only an overlap is sure to lie over the strict axis's features; hulls apart may be
     // nearest at corners no axis names, and the kept axis's speculative points (or none)
     // are as good as any.
     bool overlap = max(sep_e, max(sep_a, sep_b)) < 0.0;
-    strict = overlap ? np_strict_axis(sep_a, face_a, sep_b, face_b, sep_e, edge_a, edge_b)
-                     : manifolds[t.slot].axis.x;
+    strict = overlap ? np_strict_axis(sep_a, face_a, sep_b, face_b, sep_e, edge_a, edge_b) : kept;
     return true;
 }
 

@@ -5,8 +5,8 @@
 // Narrowphase, second pass: the points of the hull pairs the first pass (contacts.comp)
 // found touching and marked (manifolds[p].axis.z, the axis of largest separation, never 0),
 // from the axis it cached there: clipping and reduction for a face axis, the closest edge
-// points for an edge axis (hull_hull.glsl step 4). One thread per pair; unmarked pairs return at once. Dispatched
-// indirectly over counters.pair_dispatch.
+// points for an edge axis (hull_hull.glsl step 4). One thread per pair; unmarked pairs
+// return at once. Dispatched indirectly over counters.pair_dispatch.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"
