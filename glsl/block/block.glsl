@@ -174,7 +174,7 @@ block_point block_load(uint p, uint k)
     vec4 t1 = constraints[p].tangent1;
     q.t1 = t1.xyz;
     q.friction = t1.w;
-    q.t2 = constraints[p].tangent2.xyz;
+    q.t2 = cross(q.n, q.t1);   // as solver/prepare made it (tangent_basis): one load less
     vec4 ra = constraints[p].p[k].ra, rb = constraints[p].p[k].rb;
     q.ra = ra.xyz;
     q.rb = rb.xyz;
