@@ -10,11 +10,11 @@
 // and the sweeps lifted it back each step (H200, 30 sweeps: the columns scene drifted
 // 1.5 cm in 600 steps instead of 3.4 mm, the deep pile of 4,000 ended 99.6 % at rest
 // instead of 100 %). Only that much: the rest of those forces (an impact's, a push
-// sideways) is left to the solve, or a stale impact force would launch the body. The solve's target
-// stays the inertial pose: where the velocity after gravity takes the body in the step
-// (in one piece: block/end moves the body on by what the pieces add), and the turn the
-// substep passes predicted (in pieces, the spin changing between them by
-// the gyroscopic term as in the soft step's substeps), both kept in block_target.
+// sideways) is left to the solve, or a stale impact force would launch the body. The
+// solve's target stays the inertial pose: where the velocity after gravity takes the body
+// in the step (in one piece: block/end moves the body on by what the pieces add), and the
+// turn the substep passes predicted (in pieces, the spin changing between them by the
+// gyroscopic term as in the soft step's substeps), both kept in block_target.
 #include "block.glsl"
 #include "../integrate/motion.glsl"
 
