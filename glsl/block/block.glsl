@@ -216,22 +216,19 @@ vec3 block_forces(vec3 lambda, float k, vec3 C, float friction, out bvec3 on)
     return vec3(fn, ft);
 }
 
-// The part of point k's normal impulse that stopped an impact: its approach (the relative
-// normal velocity before the step, constraint mass.z) beyond the restitution threshold,
-// times its effective mass. The multiplier of a contact that stopped a body holds that
-// impulse as well as the load, and carried to the next step it pushed the body out again (a
-// hull stopped by a wall at 100 m/s left it at 30 m/s the step after, a ball bounced 7 % too
-// high). The next step starts without any force at such a point: what is left once the
-// impact's share is taken off is the estimate's error more than the load, and with the
-// stiffness the impact grew, carried too, it kicked a box stopped on a wall without gravity
-// off it at 5 mm/s (the sweeps find a load again within the step). Slower approaches are a
-// pile settling: all of their force is load (without the threshold a column of 20 sank
-// twice as far at first).
-float carried_impact(uint p, uint k, block_point q)
+// Whether point k stopped an impact: it approached (the relative normal velocity before the
+// step, constraint mass.z) faster than the restitution threshold. The multiplier of a
+// contact that stopped a body holds the impact's impulse as well as the load, and carried
+// to the next step it pushed the body out again (a hull stopped by a wall at 100 m/s left it
+// at 30 m/s the step after, a ball bounced 7 % too high). The next step starts without any
+// force at such a point: what is left once the impact's share is taken off is the
+// estimate's error more than the load, and with the stiffness the impact grew, carried too,
+// it kicked a box stopped on a wall without gravity off it at 5 mm/s (the sweeps find a
+// load again within the step). Slower approaches are a pile settling: all of their force is
+// load (without the threshold a column of 20 sank twice as far at first).
+bool stopped_impact(uint p, uint k, block_point q)
 {
-    float before = constraints[p].p[k].mass.z;
-    float h = block_h();
-    return q.unit * h * h * max(-before - params.contact.y, 0.0);
+    return q.unit > 0.0 && -constraints[p].p[k].mass.z > params.contact.y;
 }
 
 // The multipliers' update of point k of pair p (q, loaded before the sweep moved its
@@ -240,7 +237,7 @@ float carried_impact(uint p, uint k, block_point q)
 // and a point still in contact stiffens by params.block.y (per metre of its normal error, in
 // units of its effective mass over dt^2) up to params.block.z. The impulses' w is the step's
 // normal impulse so far (f_n dt). After the last sweep (`last`) the point keeps, for the
-// next step, its normal force (none after an impact, carried_impact) and its tangential slip
+// next step, its normal force (none after an impact, stopped_impact) and its tangential slip
 // while it sticks (none once it slides), and the pair keeps its stiffest point's stiffness,
 // in its unit, for the next step (axis.w, which start.comp zeroed: the last sweep updates
 // every point once, and stiffnesses only grow in a step).
@@ -251,7 +248,7 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
     bvec3 on;
     vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
     vec4 impulse = vec4(f * h, f.x * h);
-    if (last && carried_impact(p, k, q) > 0.0) impulse.x = 0.0;
+    if (last && stopped_impact(p, k, q)) impulse.x = 0.0;
     manifolds[p].impulse[k] = impulse;
     float stiffness = q.stiffness;
     if (on.x) {
