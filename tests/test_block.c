@@ -11,6 +11,7 @@
 
 #include "layout.h"
 #include "scenes.h"
+#include "solver/block.h"
 
 static tb_world* block_world_of(const tb_world_def* def)
 {
@@ -279,6 +280,30 @@ static void test_crowd_beyond_the_colours(void** state)
  * before the first step, and only then; bad arguments are refused with a sentence and
  * change nothing. A world switched to the soft step and back after bodies were added steps
  * with each. */
+/* The sweeps' lanes a body (8, 16, 32) follow the bodies and their contact points, with a
+ * margin before a change. (On lavapipe every sweep runs 1 lane a body, so the choice is
+ * checked here and its speed on a GPU, docs/performance.md.) */
+static void test_lanes_choice(void** state)
+{
+    (void)state;
+    assert_int_equal(tb_block_lanes_for(0, 0, 8), 8);
+    assert_int_equal(tb_block_lanes_for(100000, 600000, 8), 8);      /* many bodies */
+    assert_int_equal(tb_block_lanes_for(100000, 600000, 32), 8);
+    assert_int_equal(tb_block_lanes_for(5051, 59800, 8), 32);        /* base-100 pyramid */
+    assert_int_equal(tb_block_lanes_for(4000, 16000, 8), 16);        /* 8 entries a body */
+    assert_int_equal(tb_block_lanes_for(4000, 1000, 8), 8);          /* few contacts */
+    assert_int_equal(tb_block_lanes_for(4000, 1000, 16), 8);
+    /* At a bound, the lanes in use stay: 4 entries a body, 7,000 and 8,192 bodies. */
+    assert_int_equal(tb_block_lanes_for(7000, 14000, 8), 8);
+    assert_int_equal(tb_block_lanes_for(7000, 14000, 16), 16);
+    assert_int_equal(tb_block_lanes_for(8192, 40000, 16), 16);
+    assert_int_equal(tb_block_lanes_for(8192, 40000, 8), 8);
+    /* Well past it, they change. */
+    assert_int_equal(tb_block_lanes_for(5000, 20000, 8), 16);
+    assert_int_equal(tb_block_lanes_for(7000, 9000, 16), 8);
+    assert_int_equal(tb_block_lanes_for(11000, 40000, 16), 8);
+}
+
 static void test_solver_choice(void** state)
 {
     (void)state;
@@ -338,6 +363,7 @@ int main(void)
         cmocka_unit_test(test_head_on_bounce_trades_velocities),
         cmocka_unit_test(test_impact_is_not_carried),
         cmocka_unit_test(test_crowd_beyond_the_colours),
+        cmocka_unit_test(test_lanes_choice),
         cmocka_unit_test(test_solver_choice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

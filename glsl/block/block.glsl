@@ -18,12 +18,22 @@
 #include "world.glsl"
 #include "quat.glsl"
 
-// Invocations that share a body in a sweep (solve.comp): on a GPU 8, or the subgroup when it
-// is narrower, so a colour keeps many threads busy each with a short chain of loads; on a
-// CPU device 1, as its lanes are SIMD lanes of one core that each pay for the whole 6x6
-// solve (lavapipe, deep pile of 4,000: solve 356 ms a step with 8 lanes a body, 217 with 4
-// or 2, 168 with 1).
-const uint BLOCK_LANES = CPU_DEVICE != 0u ? 1u : SUBGROUP_SIZE < 8u ? SUBGROUP_SIZE : 8u;
+// Invocations that share a body in a sweep: on a GPU `wanted`, or the subgroup when it is
+// narrower; on a CPU device 1, as its lanes are SIMD lanes of one core that each pay for the
+// whole 6x6 solve (lavapipe, deep pile of 4,000: solve 356 ms a step with 8 lanes a body,
+// 217 with 4 or 2, 168 with 1). The sweep comes in 8, 16 and 32 lanes (block/solve,
+// block/solve_16, block/solve_32; the host picks one, tb_block_lanes_for): more lanes a
+// body shorten each lane's chain of loads, which pays while a colour's bodies are fewer
+// than the GPU's threads and each has many points.
+#define BLOCK_LANES_OF(wanted) (CPU_DEVICE != 0u ? 1u : SUBGROUP_SIZE < (wanted) ? SUBGROUP_SIZE : (wanted))
+
+// The lanes of this shader's sweep (TB_BLOCK_LANES, defined before this file by the sweeps
+// that want more than 8; block/bounce keeps 8 and runs on the sweeps' dispatch sizes, its
+// extra lanes idle).
+#ifndef TB_BLOCK_LANES
+#define TB_BLOCK_LANES 8u
+#endif
+const uint BLOCK_LANES = BLOCK_LANES_OF(TB_BLOCK_LANES);
 
 bool block_dynamic(uint i)
 {

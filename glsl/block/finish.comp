@@ -2,25 +2,29 @@
 #extension GL_GOOGLE_include_directive : require
 // After the count of the bodies of each colour, one workgroup: colour[c].y = first index of
 // colour c in block_list, colour[c].w = 0 (the fill's cursor), colour_dispatch[c] covering
-// colour[c].x bodies, BLOCK_LANES threads each, in workgroups of TB_SOLVER_WORKGROUP_SIZE;
-// solver.x = the colours in use (the highest + 1). A body coloured beyond the colours the
+// colour[c].x bodies, BLOCK_LANES_OF(push.args.x) threads each (push.args.x: the lanes of
+// the sweep the host recorded), in workgroups of TB_SOLVER_WORKGROUP_SIZE; solver.x = the
+// colours in use (the highest + 1). A body coloured beyond the colours the
 // host recorded sweeps for (params.capacity.z), or left uncoloured while it recorded fewer
 // than TB_MAX_COLOURS, abandons the step (TB_ABORT_COLOURS): the host records more rounds
 // and runs it again. With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the
 // tail (list.comp), solved one at a time after the colours.
 #include "block.glsl"
 
+layout(push_constant) uniform Push { tb_gpu_push push; };
+
 void main()
 {
     bool aborted = step_aborted();
     barrier();
     if (aborted) return;
+    uint lanes = BLOCK_LANES_OF(push.args.x);
     for (uint c = gl_LocalInvocationID.x; c < TB_MAX_COLOURS; c += gl_WorkGroupSize.x) {
         uint first = 0u;
         for (uint k = 0u; k < c; k++) first += counters.colour[k].x;
         counters.colour[c].y = first;
         counters.colour[c].w = 0u;
-        counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x * BLOCK_LANES,
+        counters.colour_dispatch[c] = dispatch_covering(counters.colour[c].x * lanes,
                                                         TB_SOLVER_WORKGROUP_SIZE);
     }
     if (gl_LocalInvocationID.x != 0u) return;

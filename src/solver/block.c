@@ -28,6 +28,8 @@ static const tb_pipeline_slot kernels[] = {
     { "block/start", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, start) },
     { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
     { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
+    { "block/solve_16", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_16) },
+    { "block/solve_32", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_32) },
     { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
     { "block/bounce", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, bounce) },
 };
@@ -46,6 +48,40 @@ void tb_block_destroy(tb_block_solver* s)
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
     memset(s, 0, sizeof *s);
+}
+
+/* Bodies from which a world keeps 8 lanes a body whatever its points (below it, 16 or 32 were
+ * faster on every scene of the H100 run in tb_block_lanes_for's note); and the list entries
+ * a body (two per contact point) from which 16 and 32 lanes pay. */
+#define FEW_BODIES 8192.0
+#define ENTRIES_FOR_16 4.0
+#define ENTRIES_FOR_32 16.0
+
+/* The lanes for these counts, with the bounds made `slack` times harder to pass for more
+ * lanes (fewer bodies, more entries a body). */
+static uint32_t lanes_at(double bodies, double entries, double slack)
+{
+    if (bodies <= 0.0 || bodies * slack >= FEW_BODIES) return 8;
+    if (entries >= ENTRIES_FOR_32 * slack * bodies) return 32;
+    if (entries >= ENTRIES_FOR_16 * slack * bodies) return 16;
+    return 8;
+}
+
+uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t current)
+{
+    double entries = 2.0 * contact_points;
+    uint32_t eager = lanes_at(bodies, entries, 1.0);
+    /* A change must hold with the bounds a quarter harder to cross, so a world near one
+     * does not record its step again and again. */
+    if (eager > current) {
+        uint32_t sure = lanes_at(bodies, entries, 1.25);
+        return sure > current ? sure : current;
+    }
+    if (eager < current) {
+        uint32_t sure = lanes_at(bodies, entries, 0.8);
+        return sure < current ? sure : current;
+    }
+    return current;
 }
 
 static tb_result add(const tb_block_solver* s, tb_pass_list* list, VkPipeline pipeline,
@@ -93,7 +129,7 @@ static tb_result record_tail_list(const tb_block_solver* s, tb_pass_list* list,
 
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
-                                    uint32_t colours)
+                                    uint32_t colours, uint32_t lanes)
 {
     tb_gpu_ptr no_total = { 0 };
     tb_result r = per_body(s, list, s->reset, counters, 0);
@@ -106,13 +142,13 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     for (uint32_t round = 0; round < rounds && !r; round++)
         r = per_body(s, list, s->colour, counters, round);
     if (!r) r = per_body(s, list, s->list, counters, 0);
-    if (!r) r = add(s, list, s->finish, TB_DISPATCH_FIXED, counters, 0, 0);
+    if (!r) r = add(s, list, s->finish, TB_DISPATCH_FIXED, counters, 0, lanes);
     if (!r) r = per_body(s, list, s->list, counters, 1);
     if (!r && colours == TB_MAX_COLOURS) r = record_tail_list(s, list, counters, lists);
     return r;
 }
 
-/* One pass of `pipeline` over each colour's bodies (its dispatch covers BLOCK_LANES threads
+/* One pass of `pipeline` over each colour's bodies (its dispatch covers the sweep's lanes
  * a body), with push args (colour, y, z); with all TB_MAX_COLOURS, then one workgroup over
  * the tail (colour TB_MAX_COLOURS), which returns at once when the tail is empty. */
 static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
@@ -136,16 +172,17 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
 }
 
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, const tb_block_settings* settings,
-                                int restitution)
+                                uint32_t colours, uint32_t lanes,
+                                const tb_block_settings* settings, int restitution)
 {
+    VkPipeline sweep = lanes >= 32 ? s->solve_32 : lanes >= 16 ? s->solve_16 : s->solve;
     uint32_t iterations = settings->iterations;
     /* block/solve takes the over-relaxation in thousandths (0: none). */
     uint32_t relax = (uint32_t)lroundf(settings->over_relaxation * 1000.0f);
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = over_colours(s, list, counters, s->solve, colours, it + 1 == iterations, relax);
+        r = over_colours(s, list, counters, sweep, colours, it + 1 == iterations, relax);
     if (!r) r = per_body(s, list, s->end, counters, 0);
     if (!r && restitution) r = over_colours(s, list, counters, s->bounce, colours, 0, 0);
     return r;

@@ -31,7 +31,8 @@
 
 typedef struct tb_block_solver {
     tb_pipelines* pipelines;
-    VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, solve, end, bounce;
+    VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, end, bounce;
+    VkPipeline solve, solve_16, solve_32;   ///< the sweep with 8, 16 and 32 lanes a body
 } tb_block_solver;
 
 /// What building the contact lists needs: the list starts (uint per body slot, scanned in
@@ -71,17 +72,29 @@ void tb_block_destroy(tb_block_solver* s);
 /// colours only the bodies that beat their uncoloured neighbours.
 uint32_t tb_block_colouring_rounds(uint32_t colours);
 
+/// The lanes a body for the sweeps (8, 16 or 32; a GPU whose subgroup is narrower, or a CPU
+/// device, uses fewer: glsl/block/block.glsl), from the world's bodies and the contact
+/// points of its last step, and the lanes in use now (`current`, which the choice keeps
+/// unless it is clearly better to change: each change records the step again). More lanes
+/// shorten each lane's chain of loads, which pays while the bodies are few and have many
+/// points each (H100, solve ms: pyramid of 5,050, 24 list entries a body, 1.90 with 8 lanes,
+/// 1.64 with 16, 1.43 with 32; deep pile of 4,000 0.78, 0.72, 0.81), and costs once a
+/// colour's bodies outnumber the threads the GPU runs at once (boxes 10,000: 1.13, 1.17,
+/// 1.48; 100,000: 4.00, 5.57, 9.50).
+uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t current);
+
 /// The contact list of every dynamic body and the colouring of the dynamic bodies:
 /// reset, count, scan, fill, sort, tb_block_colouring_rounds(colours) colouring rounds,
-/// then the bodies listed by colour; with all TB_MAX_COLOURS, then the bodies the colouring
-/// left over listed, in body order, as the tail. `counters` is the buffer bound at
-/// TB_BIND_COUNTERS.
+/// then the bodies listed by colour (their sweeps' dispatches sized for `lanes` lanes a
+/// body); with all TB_MAX_COLOURS, then the bodies the colouring left over listed, in body
+/// order, as the tail. `counters` is the buffer bound at TB_BIND_COUNTERS.
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
-                                    uint32_t colours);
+                                    uint32_t colours, uint32_t lanes);
 
 /// The iterations (after the solver records hold the velocities with gravity and the
-/// inertial pose): start, guess, then `iterations` sweeps, each a solve of colours
+/// inertial pose): start, guess, then `iterations` sweeps (`lanes` lanes a body, as the
+/// colouring was recorded with), each a solve of colours
 /// 0..colours-1 (and, with all TB_MAX_COLOURS, of the tail, one body at a time) that also
 /// updates the multipliers; then the velocities, and with
 /// `restitution` (some shape of the world has restitution) a pass over the colours that
@@ -89,7 +102,7 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 /// other iteration, a symmetric Gauss-Seidel, measured worse: a 20-box column sank 8.4 cm
 /// instead of 8.6 mm.)
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, const tb_block_settings* settings,
-                                int restitution);
+                                uint32_t colours, uint32_t lanes,
+                                const tb_block_settings* settings, int restitution);
 
 #endif

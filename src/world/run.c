@@ -154,6 +154,16 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
     }
 }
 
+/* The block solver's lanes a body for the bodies and contact points of the last step. */
+static void fit_block_lanes(tb_world* w, const tb_gpu_counters* c)
+{
+    if (!w->block_solver) return;
+    uint32_t lanes = tb_block_lanes_for(w->body_slots.live, c->solver.w, w->block_lanes);
+    if (lanes == w->block_lanes) return;
+    w->block_lanes = lanes;
+    w->step_built = 0;
+}
+
 /* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
 static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
 {
@@ -171,7 +181,10 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     w->gpu_steps += *done;
     r = tb_events_deliver(w, c);
     if (!r && c->state.x) r = grow_for(w, c);
-    else if (!r) fit_colour_rounds(w, c);
+    else if (!r) {
+        fit_colour_rounds(w, c);
+        fit_block_lanes(w, c);
+    }
     return r;
 }
 

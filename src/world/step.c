@@ -123,7 +123,7 @@ static void block_colour_stage(builder* b)
         .body_capacity = sim->body_capacity,
     };
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
-                                                w->colour_rounds);
+                                                w->colour_rounds, w->block_lanes);
     end_stage(b, "solver/colour");
 }
 
@@ -168,8 +168,8 @@ static void solve_stage(builder* b)
          * and the pose the solve's inertia pulls towards. */
         if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 2, w->substeps);
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
-                                                w->colour_rounds, &w->block_settings,
-                                                w->bouncy_shapes > 0);
+                                                w->colour_rounds, w->block_lanes,
+                                                &w->block_settings, w->bouncy_shapes > 0);
         end_stage(b, "solver/solve");
         return;
     }

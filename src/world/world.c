@@ -85,6 +85,7 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->broadphase_kind = broadphase;
     w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
+    w->block_lanes = 8;
     /* The block solver unless the environment asks for the soft step (TUMBLE_SOLVER=soft). */
     const char* solver = getenv("TUMBLE_SOLVER");
     w->block_solver = !(solver && strcmp(solver, "soft") == 0);

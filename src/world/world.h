@@ -90,6 +90,7 @@ struct tb_world {
     uint32_t body_set_version;             ///< bodies created and destroyed so far
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
+    uint32_t block_lanes;        ///< lanes a body in the block solver's sweeps (tb_block_lanes_for)
     uint32_t substeps, solver_iterations;
     float contact_margin, restitution_threshold;
     float contact_hertz, contact_damping_ratio, contact_push_speed;

@@ -1,0 +1,261 @@
+// The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y = 1
+// in the last sweep of the step; push.args.z the over-relaxation, see over_relaxation):
+// body block_list[colour[c].y + b].x, b < counters.colour[c].x, moves by one Newton step on
+//     E(x) = |x - y|^2_M / (2 dt^2) + sum over its contacts of the rows' energies,
+// y the inertial pose (where its velocity after gravity would take it), with the other
+// bodies held where they are. Gradient and Hessian are 6x6 (position, rotation vector),
+// solved by block elimination. The Hessian keeps a row's stiffness even while its force is
+// clamped (a contact apart, a point sliding): without it, a contact whose force has just
+// dropped to zero lets the Newton step jump through it, and a body landing on the floor
+// sinks into it with the multiplier swinging between nothing and many times its weight.
+//
+// BLOCK_LANES neighbouring invocations of a subgroup share a body: lane j takes the contact
+// points j, j + BLOCK_LANES, ... of the body's list (an entry per point) and sums their
+// rows, and the lanes add up their sums by a butterfly of shuffles, so every lane ends with
+// the same totals, bit for bit, in an order fixed by the list (runs stay repeatable).
+// A body's points are spread over many threads instead of one thread walking them all: a
+// colour of 10,000 bodies keeps 80,000 threads busy, each with a short chain of loads.
+// push.args.x = TB_MAX_COLOURS: the tail instead (solve_tail).
+//
+// The sweep's shaders (block/solve, block/solve_16, block/solve_32) are this file with
+// BLOCK_LANES lanes a body (TB_BLOCK_LANES, block.glsl). Needs GL_KHR_shader_subgroup_basic
+// and _shuffle, which they enable.
+#ifndef TB_BLOCK_SOLVE_GLSL
+#define TB_BLOCK_SOLVE_GLSL
+
+#include "listed.glsl"
+#include "../integrate/motion.glsl"
+
+layout(push_constant) uniform Push { tb_gpu_push push; };
+
+struct newton {
+    mat3 A, B, D;   // Hessian blocks: position-position, position-rotation, rotation-rotation
+    vec3 gl, ga;    // gradient: position, rotation
+};
+
+// World inertia of body i (infinite moments made very large).
+mat3 world_inertia(uint i)
+{
+    mat3 r = quat_to_mat3(body_rot[i]);
+    vec3 inv = body_inv_inertia[i].xyz;
+    vec3 d = vec3(inv.x > 0.0 ? 1.0 / inv.x : 1e20, inv.y > 0.0 ? 1.0 / inv.y : 1e20,
+                  inv.z > 0.0 ? 1.0 / inv.z : 1e20);
+    return r * mat3(d.x, 0.0, 0.0, 0.0, d.y, 0.0, 0.0, 0.0, d.z) * transpose(r);
+}
+
+newton no_newton()
+{
+    newton e;
+    e.A = mat3(0.0);
+    e.B = mat3(0.0);
+    e.D = mat3(0.0);
+    e.gl = vec3(0.0);
+    e.ga = vec3(0.0);
+    return e;
+}
+
+// The inertia's rows of body i (state s). Its turn beyond the free turn (block_target),
+// theta, changes its spin by theta / h, and a spinning body answers a change of spin with the
+// gyroscopic term: Euler's equations I dw/dt + w x I w = torque, the turn's part of them
+// linearised about the free spin w, ask
+//     (I + h (skew(w) I - skew(I w))) theta / h^2 = torque   (skew: integrate/motion.glsl)
+// (one Newton step on the body's angular momentum equation). Without the gyroscopic part a
+// fast top took the torque of its tip as a plain push and fell over instead of precessing
+// (test_integrate, 40 rad/s at 60 Hz: -0.19 rad/s of precession instead of 1.22, the tilt
+// off by 13 degrees; with it 1.18 rad/s and 1.5 degrees; the soft step's substeps hand the
+// torque to the spin in four pieces, the block solver in one). For a sphere, or a body at
+// rest, it is the inertia alone. The matrix is not symmetric; the block elimination in main
+// does not need it to be.
+void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
+{
+    float m = 1.0 / s.linear.w, scale = 1.0 / (h * h);
+    mat3 I = world_inertia(i);
+    vec3 w = s.angular.xyz;
+    mat3 D = (I + h * (skew(w) * I - skew(I * w))) * scale;
+    e.A += mat3(m * scale);
+    e.D += D;
+    e.gl += m * scale * (s.delta_position.xyz - block_target[2u * i].xyz);
+    vec4 target = block_target[2u * i + 1u];
+    vec4 off = quat_mul(s.delta_rotation, vec4(-target.xyz, target.w));
+    e.ga += D * rotation_vector(off);
+}
+
+// Row u of a point at lever arm r (at the step's start), sign +1 on body b and -1 on body a:
+// the rows are linear in the motion (block_rows), so this Jacobian is exact and the Hessian
+// needs no geometric stiffness.
+void add_row(inout newton e, vec3 u, vec3 r, float sign, float f, float k)
+{
+    vec3 jl = sign * u, ja = sign * cross(r, u);
+    e.gl -= f * jl;
+    e.ga -= f * ja;
+    e.A += k * outerProduct(jl, jl);
+    e.B += k * outerProduct(jl, ja);
+    e.D += k * outerProduct(ja, ja);
+}
+
+void add_point(inout newton e, block_point q, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+{
+    vec3 C = block_rows(q, dpa, va, dpb, vb);
+    bvec3 on;
+    vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
+    vec3 r = is_b ? q.rb : q.ra;
+    float sign = is_b ? 1.0 : -1.0;
+    add_row(e, q.n, r, sign, f.x, q.stiffness);
+    add_row(e, q.t1, r, sign, f.y, q.stiffness);
+    add_row(e, q.t2, r, sign, f.z, q.stiffness);
+}
+
+vec3 lanes_sum(vec3 v)
+{
+    for (uint m = BLOCK_LANES >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
+    return v;
+}
+
+mat3 lanes_sum(mat3 a)
+{
+    return mat3(lanes_sum(a[0]), lanes_sum(a[1]), lanes_sum(a[2]));
+}
+
+newton lanes_sum(newton e)
+{
+    e.A = lanes_sum(e.A);
+    e.B = lanes_sum(e.B);
+    e.D = lanes_sum(e.D);
+    e.gl = lanes_sum(e.gl);
+    e.ga = lanes_sum(e.ga);
+    return e;
+}
+
+// How far a body moves along its Newton step (push.args.z, in thousandths; 0: the whole
+// step). A little beyond it (1.2) the sweeps converge faster on stacks: a column's bodies,
+// each stopped short by its neighbours' old positions, move together sooner. Measured on an
+// H100 (docs/performance.md): the columns scene 88 -> 100 % at rest, the deep pile of
+// 4,000 90.6 -> 99.6 %, the base-100 pyramid's drift 4.1 -> 4.0 cm, at the same cost;
+// at 1.3 a hull stopped by a wall without gravity crept away from it (3.7 cm/s), and at
+// 1.6 the columns fell.
+float over_relaxation()
+{
+    return push.args.z == 0u ? 1.0 : float(push.args.z) / 1000.0;
+}
+
+// The motion (displacement, rotation vector) of body o since the step began.
+void motion_of(uint o, out vec3 dp, out vec3 v)
+{
+    dp = solver_bodies[o].delta_position.xyz;
+    v = rotation_vector(solver_bodies[o].delta_rotation);
+}
+
+// Entry `entry` of the body's list as the sweep sees it: the point, the other body and
+// how far that one has moved (it is of another colour, or static: it stays put during the
+// dispatch).
+struct item {
+    uint entry, p, k, other;
+    uint other_colour; // body_colour of the other body
+    block_point q;
+    vec3 dp, v;
+};
+
+item item_of(uvec2 entry)
+{
+    item it;
+    it.entry = entry.x;
+    it.p = block_pair(entry.x);
+    it.k = block_point_of(entry.x);
+    it.other = entry.y;
+    it.other_colour = body_colour[it.other];
+    it.q = block_load(it.p, it.k);
+    motion_of(it.other, it.dp, it.v);
+    return it;
+}
+
+void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
+{
+    if (block_is_b(it.entry)) add_point(e, it.q, true, it.dp, it.v, my_dp, my_v);
+    else add_point(e, it.q, false, my_dp, my_v, it.dp, it.v);
+}
+
+// The multipliers' update of the item's point if its other body has already moved in this
+// sweep (a static one, or one of an earlier place, block_order): both are where the sweep
+// leaves them.
+void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
+{
+    if (!block_moved_before(it.other_colour, order)) return;
+    if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
+    else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
+}
+
+// Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
+// (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
+// together, `valid` false on lanes without a body (beyond the colour's bodies).
+void solve_body(uvec4 listed, uint lane, bool valid, uint order)
+{
+    uint i = listed.x, first = listed.y, items = listed.z;
+    tb_gpu_solver_body me = solver_bodies[i];
+    vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
+    // The first pass's points stay in registers for the multipliers' update below.
+    newton e = no_newton();
+    item kept;
+    bool has_kept = lane < items;
+    if (has_kept) {
+        kept = item_of(block_entries[first + lane]);
+        add_item(e, kept, my_dp, my_v);
+    }
+    for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
+        add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
+    e = lanes_sum(e);
+    if (!valid) return;
+    add_inertia(e, i, me, block_h());
+    // [A B; B^T D] [x; y] = [gl; ga] by the Schur complement of A.
+    mat3 Ai = inverse(e.A), Bt = transpose(e.B);
+    mat3 S = e.D - Bt * Ai * e.B;
+    vec3 y = inverse(S) * (e.ga - Bt * (Ai * e.gl));
+    vec3 x = Ai * (e.gl - e.B * y);
+    float relax = over_relaxation();
+    my_dp = me.delta_position.xyz - relax * x;
+    vec4 my_dq = normalize(quat_mul(quat_of_rotation_vector(-relax * y), me.delta_rotation));
+    if (lane == 0u) {
+        solver_bodies[i].delta_position.xyz = my_dp;
+        solver_bodies[i].delta_rotation = my_dq;
+    }
+    my_v = rotation_vector(my_dq);
+    // The multipliers of the contacts whose other body has already moved are updated here,
+    // by the last of their bodies to move, so no pass of its own after the sweep needs a
+    // dispatch and a read of every contact.
+    bool last = push.args.y != 0u;
+    if (has_kept) update_item(kept, order, my_dp, my_v, last);
+    for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
+        update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
+}
+
+// The tail (push.args.x = TB_MAX_COLOURS, one workgroup): the bodies the colouring left
+// over, one after the other in their order in the tail, by the first BLOCK_LANES lanes of
+// one subgroup; each body sees the moves and multipliers of the ones before it. Serial, so
+// still Gauss-Seidel and repeatable; the usual step has no tail and returns at once.
+void solve_tail()
+{
+    uint count = counters.colouring.z;
+    uint lane = gl_SubgroupInvocationID;
+    if (count == 0u || gl_SubgroupID != 0u || lane >= BLOCK_LANES) return;
+    uint start = block_tail_start();
+    for (uint t = 0u; t < count; t++) {
+        solve_body(block_list[start + t], lane, true, uint(TB_MAX_COLOURS) + t);
+        subgroupMemoryBarrierBuffer();
+        subgroupBarrier();
+    }
+}
+
+void main()
+{
+    if (step_aborted()) return;
+    uint colour = push.args.x;
+    if (colour >= TB_MAX_COLOURS) {
+        solve_tail();
+        return;
+    }
+    uvec4 listed;
+    uint lane;
+    bool valid = block_listed(colour, listed, lane);
+    solve_body(listed, lane, valid, colour);
+}
+
+#endif
