@@ -289,25 +289,15 @@ $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 
 # Tests run on lavapipe with the validation layers (synchronization validation included);
 # any validation message fails a test. Each binary runs at lavapipe's two subgroup widths,
-# both at once (a test keeps about one core busy); their outputs follow each other.
+# TEST_JOBS runs at a time (a run keeps about one core busy), the slowest binaries first so
+# that none is left running alone at the end (tools/run-tests).
 TEST_ENV := TUMBLE_DEVICE=$${TUMBLE_DEVICE:-llvmpipe} TUMBLE_VALIDATION=1
 TEST_LOGS := $(BUILD)/test-logs
+TEST_JOBS ?= 2
+TEST_SLOWEST := $(addprefix $(BUILD)/tests/,test_stacking test_broadphase test_contacts test_narrowphase test_block test_scale test_integrate)
+TEST_ORDER := $(filter $(TEST_BIN),$(TEST_SLOWEST)) $(filter-out $(TEST_SLOWEST),$(TEST_BIN))
 test: deps check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install check-examples abi-check check-abi-break check-python
-	$(Q)fail=0; pass=0; mkdir -p $(TEST_LOGS); \
-	for t in $(TEST_BIN); do \
-	  for width in 256 128; do \
-	    log=$(TEST_LOGS)/$$(basename $$t).$$width; \
-	    (env $(TEST_ENV) LP_NATIVE_VECTOR_WIDTH=$$width $$t > $$log.log 2>&1; echo $$? > $$log.rc) & \
-	  done; \
-	  wait; \
-	  for width in 256 128; do \
-	    log=$(TEST_LOGS)/$$(basename $$t).$$width; \
-	    printf '  %-8s %s (LP_NATIVE_VECTOR_WIDTH=%s)\n' TEST $$t $$width; cat $$log.log; \
-	    if [ "$$(cat $$log.rc)" = 0 ]; then pass=$$((pass+1)); \
-	    else fail=$$((fail+1)); echo "FAILED: $$t at width $$width"; fi; \
-	  done; \
-	done; \
-	echo "$$pass passed, $$fail failed"; [ $$fail -eq 0 ]
+	$(Q)env $(TEST_ENV) sh tools/run-tests $(TEST_LOGS) $(TEST_JOBS) $(TEST_ORDER)
 
 # The ABI contract (abi/): libtumble.so compared with abi/libtumble.abi by libabigail's
 # abidiff, on the types of the public headers. Added functions are compatible; any other

@@ -303,10 +303,11 @@ double th_bounce_apex(tb_world* w, float restitution, float drop)
     return apex;
 }
 
-int th_large_scene_runs(const char* what)
+int th_large_scene_runs(const char* what, const char* width)
 {
-    const char* width = getenv("LP_NATIVE_VECTOR_WIDTH");
-    if (!width || strcmp(width, "128") != 0 || getenv("TB_ALL_WIDTHS")) return 1;
-    print_message("  %s runs at LP_NATIVE_VECTOR_WIDTH=256 only (TB_ALL_WIDTHS=1: here too)\n", what);
+    const char* here = getenv("LP_NATIVE_VECTOR_WIDTH");
+    if (!here || strcmp(here, width) == 0 || getenv("TB_ALL_WIDTHS")) return 1;
+    print_message("  %s runs at LP_NATIVE_VECTOR_WIDTH=%s only (TB_ALL_WIDTHS=1: here too)\n",
+                  what, width);
     return 0;
 }

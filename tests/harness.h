@@ -40,10 +40,12 @@ const th_log* th_world_log(const tb_world* w);
 void th_world_destroy(tb_world* w);
 
 /// Whether a large scene (a pile of thousands of bodies settling for hundreds of steps) runs
-/// in this run: on lavapipe only at its native 256-bit width, as the scene tests the solver,
-/// not the subgroup width (the unit tests cover both widths), and make test runs both widths
-/// at once on two cores. TB_ALL_WIDTHS=1 runs them at every width. Prints why when not.
-int th_large_scene_runs(const char* what);
+/// in this run: on lavapipe only at one of its vector widths, `width` ("256" or "128"), as
+/// the scene tests the solver, not the width (the unit tests cover both); make test runs
+/// both widths at once on two cores, so a test file with two large scenes gives each its
+/// own width and the two runs take about as long. Without LP_NATIVE_VECTOR_WIDTH, or with
+/// TB_ALL_WIDTHS=1, they run at every width. Prints why when not.
+int th_large_scene_runs(const char* what, const char* width);
 
 /* ---- deterministic random numbers (xorshift64*) --------------------------------------- */
 

@@ -1,7 +1,8 @@
 /* The block solver (src/solver/block.h), the default (tb_world_set_solver chooses it
  * explicitly here): what it holds, so it keeps holding it while it is worked on. Measured
  * on lavapipe at its defaults (30 sweeps): the column of 20 sinks 4.6 mm in 1000
- * steps (the soft step: 27 mm), a tilted box dropped on the floor lands on a face and stays.
+ * steps (the soft step: 27 mm), a tilted box dropped on the floor lands on a face and stays;
+ * the sweeps' lanes a body (8, 16, 32) follow the world's bodies and contact points.
  */
 #include "harness.h"
 

@@ -213,7 +213,7 @@ static pile_result pour_spheres(uint32_t steps)
 static void test_pour_spheres_settles_deterministically(void** state)
 {
     (void)state;
-    if (!th_large_scene_runs("the sphere pour")) skip();
+    if (!th_large_scene_runs("the sphere pour", "256")) skip();
     pile_result a = pour_spheres(420);
     pile_result b = pour_spheres(420);
     assert_int_equal(a.n, b.n);

@@ -140,7 +140,7 @@ static scene_checks checks_after(const char* name, uint32_t n, uint32_t steps)
 static void test_hull_pour_settles(void** state)
 {
     (void)state;
-    if (!th_large_scene_runs("the hull pour")) skip();
+    if (!th_large_scene_runs("the hull pour", "128")) skip();
     scene_checks c = checks_after("hulls", 1000, 300);
     assert_true(check_of(&c, "nan") == 0);
     assert_true(check_of(&c, "escaped") == 0);
@@ -154,7 +154,7 @@ static void test_hull_pour_settles(void** state)
 static void test_deep_pile_stands(void** state)
 {
     (void)state;
-    if (!th_large_scene_runs("the deep pile")) skip();
+    if (!th_large_scene_runs("the deep pile", "256")) skip();
     scene_checks c = checks_after("deep", 4000, 600);
     assert_true(check_of(&c, "nan") == 0);
     assert_true(check_of(&c, "escaped") == 0);
