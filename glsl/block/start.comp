@@ -5,7 +5,8 @@
 // impulse) and from the larger of the starting stiffness params.block.x and the share
 // params.block_more.w of the pair's stiffness last step (both in units of its effective mass
 // over dt^2; the narrowphase carries the pair's in axis.w, which the sweeps then raise to the
-// stiffest point's, block_dual).
+// stiffest point's, block_dual). The stiffness goes into the impulse's w, where the sweeps
+// keep it until the last one writes the step's normal impulse there.
 #include "block.glsl"
 
 void main()
@@ -18,7 +19,7 @@ void main()
     manifolds[p].axis.w = 0u;
     for (uint k = 0u; k < count; k++) {
         vec4 impulse = manifolds[p].impulse[k];
-        manifolds[p].impulse[k] = vec4(impulse.xyz * params.block.w, 0.0);
-        constraints[p].p[k].mass.w = stiffness * block_stiffness_unit(p, k);
+        manifolds[p].impulse[k] = vec4(impulse.xyz * params.block.w,
+                                       stiffness * block_stiffness_unit(p, k));
     }
 }

@@ -467,7 +467,9 @@ TB_STRUCT(tb_gpu_manifold) {
                                                  w separation (m, negative when penetrating) */
     TB_VEC4 impulse[TB_MAX_MANIFOLD_POINTS];  /* accumulated over a substep: x normal, y tangent
                                                  1, z tangent 2; w the normal impulse of the
-                                                 whole step (the sum over its substeps); N s */
+                                                 whole step (the sum over its substeps); N s
+                                                 (the block solver's sweeps keep the point's
+                                                 stiffness in w until the last) */
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
@@ -491,8 +493,7 @@ TB_STRUCT(tb_gpu_constraint_point) {
     TB_VEC4 mass;             /* x tangent 1 mass, y tangent 2 mass, z relative normal velocity
                                  before the step (m/s), w the most negative one the solve has
                                  seen (restitution answers the faster approach); the block
-                                 solver keeps the point's stiffness in w during its sweeps and
-                                 then the bounce impulse (glsl/block/bounce.comp) */
+                                 solver keeps the bounce impulse in w (glsl/block/bounce.comp) */
 };
 
 /* Indexed like the pairs of this step's half (constraints[p] for pairs[half base + p]). */
