@@ -277,10 +277,6 @@ static void test_crowd_beyond_the_colours(void** state)
     assert_memory_equal(at[0], at[1], sizeof at[0]);
 }
 
-/* A world starts with the block solver (30 sweeps); tb_world_set_solver chooses the solver
- * before the first step, and only then; bad arguments are refused with a sentence and
- * change nothing. A world switched to the soft step and back after bodies were added steps
- * with each. */
 /* The sweeps' lanes a body (8, 16, 32) follow the bodies and their contact points, with a
  * margin before a change. (On lavapipe every sweep runs 1 lane a body, so the choice is
  * checked here and its speed on a GPU, docs/performance.md.) */
@@ -305,6 +301,10 @@ static void test_lanes_choice(void** state)
     assert_int_equal(tb_block_lanes_for(11000, 40000, 16), 8);
 }
 
+/* A world starts with the block solver (30 sweeps); tb_world_set_solver chooses the solver
+ * before the first step, and only then; bad arguments are refused with a sentence and
+ * change nothing. A world switched to the soft step and back after bodies were added steps
+ * with each. */
 static void test_solver_choice(void** state)
 {
     (void)state;

@@ -94,13 +94,12 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 
 /// The iterations (after the solver records hold the velocities with gravity and the
 /// inertial pose): start, guess, then `iterations` sweeps (`lanes` lanes a body, as the
-/// colouring was recorded with), each a solve of colours
-/// 0..colours-1 (and, with all TB_MAX_COLOURS, of the tail, one body at a time) that also
-/// updates the multipliers; then the velocities, and with
-/// `restitution` (some shape of the world has restitution) a pass over the colours that
-/// makes fast contacts bounce (glsl/block/bounce.comp). (Sweeping the colours back on every
-/// other iteration, a symmetric Gauss-Seidel, measured worse: a 20-box column sank 8.4 cm
-/// instead of 8.6 mm.)
+/// colouring was recorded with), each a solve of colours 0..colours-1 (and, with all
+/// TB_MAX_COLOURS, of the tail, one body at a time) that also updates the multipliers;
+/// then the velocities, and with `restitution` (some shape of the world has restitution) a
+/// pass over the colours that makes fast contacts bounce (glsl/block/bounce.comp).
+/// (Sweeping the colours back on every other iteration, a symmetric Gauss-Seidel, measured
+/// worse: a 20-box column sank 8.4 cm instead of 8.6 mm.)
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t lanes,
                                 const tb_block_settings* settings, int restitution);
