@@ -65,7 +65,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test test-build run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python wheel check-layers print-libs examples check-examples FORCE
+.PHONY: all deps test test-build test-run run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python wheel check-layers print-libs examples check-examples FORCE
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -296,11 +296,15 @@ TEST_LOGS := $(BUILD)/test-logs
 TEST_JOBS ?= 2
 TEST_SLOWEST := $(addprefix $(BUILD)/tests/,test_stacking test_broadphase test_contacts test_narrowphase test_block test_scale test_integrate)
 TEST_ORDER := $(filter $(TEST_BIN),$(TEST_SLOWEST)) $(filter-out $(TEST_SLOWEST),$(TEST_BIN))
-# What the tests run is built first with a job per core (on two cores about half the time).
+# What the tests run is built first with a job per core (on two cores about half the time);
+# the checks and the runs follow in a make of their own, so that under `make -j` no target
+# is built by two makes at once.
 BUILD_JOBS ?= $(shell nproc 2>/dev/null || echo 1)
 test-build: deps
 	$(Q)$(MAKE) --no-print-directory -j$(BUILD_JOBS) all $(TEST_BIN) $(TEST_PLUGINS)
-test: deps test-build check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install check-examples abi-check check-abi-break check-python
+test: deps test-build
+	$(Q)$(MAKE) --no-print-directory test-run
+test-run: check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install check-examples abi-check check-abi-break check-python
 	$(Q)env $(TEST_ENV) sh tools/run-tests $(TEST_LOGS) $(TEST_JOBS) $(TEST_ORDER)
 
 # The ABI contract (abi/): libtumble.so compared with abi/libtumble.abi by libabigail's
