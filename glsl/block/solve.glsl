@@ -64,8 +64,8 @@ newton no_newton()
 // (test_integrate, 40 rad/s at 60 Hz: -0.19 rad/s of precession instead of 1.22, the tilt
 // off by 13 degrees; with it 1.18 rad/s and 1.5 degrees; the soft step's substeps hand the
 // torque to the spin in four pieces, the block solver in one). For a sphere, or a body at
-// rest, it is the inertia alone. The matrix is not symmetric; the block elimination in main
-// does not need it to be.
+// rest, it is the inertia alone. The matrix is not symmetric; the block elimination in
+// solve_body does not need it to be.
 void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
 {
     float m = 1.0 / s.linear.w, scale = 1.0 / (h * h);
