@@ -298,6 +298,7 @@ typedef enum tb_shape_type {
     TB_SHAPE_BOX = 1,
     TB_SHAPE_PLANE = 2,
     TB_SHAPE_HULL = 3,
+    TB_SHAPE_MESH = 4,
     TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
 } tb_shape_type;
 

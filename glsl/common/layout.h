@@ -133,6 +133,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_GPU_SHAPE_BOX        TB_U(1)
 #define TB_GPU_SHAPE_PLANE      TB_U(2)
 #define TB_GPU_SHAPE_HULL       TB_U(3)
+#define TB_GPU_SHAPE_MESH       TB_U(4)
 
 /* Convex hull limits: the GPU walks vertices, faces and edges per pair and clips an incident
  * face polygon in registers, so their sizes are bounded. tb_shape_create_hull rejects hulls
@@ -525,6 +526,32 @@ TB_STRUCT(tb_gpu_bvh_query_push) {
     TB_VEC4 mesh_lo;          /* xyz the mesh's box, low corner; w the node count (uint bits) */
     TB_VEC4 mesh_hi;          /* xyz its high corner */
     TB_VEC4 scale;            /* xyz quantization steps per metre (65535 / extent, 0 if flat) */
+};
+
+/* A triangle mesh's GPU image (src/geom/mesh.h packs it): one buffer per mesh shape, whose
+ * device address is the shape's tb_gpu_shape.hull.xy, in uvec4 units: the header below, the
+ * BVH's nodes (tb_gpu_bvh_node), the triangles, the vertices. A triangle is three vertex
+ * indices (x y z, counter-clockwise seen from its front: the side it collides on) and its
+ * flags (w): which of its edges are active (edge k runs from vertex k to vertex k + 1 mod 3)
+ * and whether it is degenerate (no contacts). An edge is active where a body may touch it
+ * with a normal other than the triangle's: on the mesh's border, where more than two
+ * triangles or two of opposite windings meet, and on a convex crease sharper than
+ * TB_MESH_FLAT_COSINE; an edge between two triangles that are coplanar or fold concavely is
+ * inactive, so a body sliding across it meets the faces only (no bump). A vertex is
+ * active when one of its triangle's edges at it is. */
+#define TB_MESH_EDGE_ACTIVE_0     TB_U(1)
+#define TB_MESH_EDGE_ACTIVE_1     TB_U(2)
+#define TB_MESH_EDGE_ACTIVE_2     TB_U(4)
+#define TB_MESH_DEGENERATE        TB_U(8)
+#define TB_MESH_FLAT_COSINE       0.9998   /* cos of about 1.15 degrees */
+TB_STRUCT(tb_gpu_mesh_header) {
+    TB_VEC4 lo;               /* xyz the mesh's box, low corner (the quantization's origin);
+                                 w the node count (uint bits) */
+    TB_VEC4 scale;            /* xyz quantization steps per metre (65535 / extent, 0 if flat);
+                                 w the triangle count (uint bits) */
+    TB_VEC4 hi;               /* xyz the box's high corner; w the vertex count (uint bits) */
+    TB_UVEC4 sections;        /* where each part starts, in uvec4 from the image's start:
+                                 x nodes, y triangles, z vertices (vec4, w 0); w unused */
 };
 
 /* A shape as the GPU sees it. */
