@@ -5,6 +5,8 @@
  *                 in the principal frame (quickhull.c, hull.c, hull_mass.c)
  *   bvh.h         a triangle mesh's bounding volume hierarchy: median splits, depth-first
  *                 nodes with skip indices, boxes quantized to 16 bits (bvh.c)
+ *   mesh.h        triangle meshes: checked copies, active edges and degenerate triangles,
+ *                 the BVH, and the GPU image of a mesh shape (mesh.c)
  *
  * It reads the caller's points and writes hulls the caller owns; errors come back as a
  * sentence in the caller's buffer. The narrowphase's hull table packs these hulls for the
@@ -15,5 +17,6 @@
 
 #include "geom/bvh.h"
 #include "geom/hull.h"
+#include "geom/mesh.h"
 
 #endif
