@@ -342,6 +342,32 @@ TB_API tb_result tb_shape_create_plane(tb_world* world, const tb_shape_def* def,
 TB_API tb_result tb_shape_create_hull(tb_world* world, const tb_shape_def* def,
                                       const tb_vec3* points, uint32_t count, tb_shape_id* out);
 
+/// Triangle mesh: `triangle_count` triangles, three indices each into `vertices` (xyz in m,
+/// body frame). A triangle collides on its front, the side from which its vertices run
+/// counter-clockwise; a body behind it passes through (one-sided). Triangles that share an
+/// edge must share its two vertex indices: adjacency is by index, and where neighbours are
+/// flat or fold concavely their shared edge is inactive, so bodies slide across it without
+/// catching. Zero-area triangles are kept but never touch anything. Meshes are for static
+/// bodies only (a dynamic body is refused). Fails with TB_ERROR_INVALID_ARGUMENT on NULL
+/// arrays, no triangles, more than 16,777,216 triangles, an index out of range, a vertex
+/// that is not finite or farther than 1e6 m from the origin, or no triangle with an area.
+/// The mesh's geometry goes to the GPU with the next step.
+TB_API tb_result tb_shape_create_mesh(tb_world* world, const tb_shape_def* def,
+                                      const tb_vec3* vertices, uint32_t vertex_count,
+                                      const uint32_t* indices, uint32_t triangle_count,
+                                      tb_shape_id* out);
+
+/// What a mesh became.
+typedef struct tb_mesh_info {
+    uint32_t vertex_count, triangle_count;
+    uint32_t degenerate_count;   ///< triangles of zero area (they touch nothing)
+    uint32_t active_edge_count;  ///< triangle edges a body may touch with their own normal
+    tb_vec3 aabb_min, aabb_max;  ///< the mesh's box, body frame
+} tb_mesh_info;
+
+TB_API tb_result tb_shape_get_mesh_info(const tb_world* world, tb_shape_id shape,
+                                        tb_mesh_info* out);
+
 /// What a hull became.
 typedef struct tb_hull_info {
     uint32_t vertex_count, face_count, edge_count;

@@ -36,7 +36,8 @@ uint grid_hash(ivec3 c)
 bool grid_is_large(uint body, float cell)
 {
     vec3 side = body_aabb_max[body].xyz - body_aabb_min[body].xyz;
-    return !body_is(body, TB_BODY_FLAG_DYNAMIC) && max(side.x, max(side.y, side.z)) > cell;
+    return !body_is(body, TB_BODY_FLAG_DYNAMIC) &&
+           (body_is(body, TB_BODY_FLAG_MESH) || max(side.x, max(side.y, side.z)) > cell);
 }
 
 #endif

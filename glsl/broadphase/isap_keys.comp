@@ -45,7 +45,7 @@ void main()
     bool alive = body_is(i, TB_BODY_FLAG_ALIVE);
     vec3 side = hi - lo;
     bool is_large = alive && !body_is(i, TB_BODY_FLAG_DYNAMIC) &&
-                    max(side.x, max(side.y, side.z)) > large;
+                    (body_is(i, TB_BODY_FLAG_MESH) || max(side.x, max(side.y, side.z)) > large);
     uint key = !alive ? TB_ISAP_KEY_DEAD : TB_ISAP_KEY_LARGE;
     vec3 begin = lo - params.contact.x;   // the very terms aabbs_touch compares
     IsapUints keys = isap_keys();

@@ -45,7 +45,8 @@ void main()
     if (!body_is(i, TB_BODY_FLAG_ALIVE)) {
         key = TB_LBVH_KEY_DEAD;
     } else if (!body_is(i, TB_BODY_FLAG_DYNAMIC) &&
-               (body_side(i) >= TB_LBVH_UNBOUNDED_SIDE || body_side(i) > extent)) {
+               (body_is(i, TB_BODY_FLAG_MESH) || body_side(i) >= TB_LBVH_UNBOUNDED_SIDE ||
+                body_side(i) > extent)) {
         key = TB_LBVH_KEY_LARGE;
     } else {
         key = morton_code(body_centre(i), lo, extent);

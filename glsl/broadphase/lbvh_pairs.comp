@@ -8,17 +8,23 @@
 // stored as (lower slot, higher slot) whoever finds them. Large and dead entries find none.
 // The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry; the write
 // pass writes an entry that found no more from them instead of walking again (the walk is
-// most of the search). The count pass also clears the scene bounds for the next step.
+// most of the search). A mesh body's pairs are one per triangle, not one per partner: an
+// entry that meets one caches nothing (slot 0 says so) and the write pass walks again.
+// The count pass also clears the scene bounds for the next step.
 #include "world.glsl"
 #include "pairs.glsl"
 #include "lbvh_bodies.glsl"
 
-uint entry;   // this thread's sorted entry
+uint entry;      // this thread's sorted entry
+uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIRS: caches none)
 
 void report(uint i, uint j)
 {
-    if (!bp_writing() && bp_found < TB_LBVH_CACHED_PAIRS)
-        lbvh_cache().v[bp_found * lbvh_capacity() + entry] = j;
+    if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
+        bool mesh = body_is(j, TB_BODY_FLAG_MESH);
+        lbvh_cache().v[(mesh ? 0u : partners) * lbvh_capacity() + entry] = mesh ? TB_LBVH_END : j;
+        partners = mesh ? TB_LBVH_CACHED_PAIRS : partners + 1u;
+    }
     bp_report(min(i, j), max(i, j));
 }
 
@@ -34,6 +40,7 @@ bool write_cached(uint i, uint slots)
 {
     uint found = pairs_counted(i, slots);
     if (found > TB_LBVH_CACHED_PAIRS) return false;
+    if (found > 0u && lbvh_cache().v[entry] == TB_LBVH_END) return false;   // met a mesh
     for (uint k = 0u; k < found; k++) {
         uint j = lbvh_cache().v[k * lbvh_capacity() + entry];
         bp_report(min(i, j), max(i, j));
@@ -82,6 +89,7 @@ void main()
     uint leaves = lbvh_links().v[lbvh_leaf_count_index(lbvh_capacity())];
     uint i = lbvh_values().v[s];
     entry = s;
+    partners = 0u;
     bp_begin(i);
     if (s < leaves && !(bp_writing() && write_cached(i, count))) {
         bool dynamic = body_is(i, TB_BODY_FLAG_DYNAMIC);

@@ -6,8 +6,16 @@
 //     bp_begin(finder);
 //     ... for each candidate j: if (bp_wanted(i, j)) bp_report(i, j);
 //     bp_end(finder);
+//
+// A pair with a mesh body is reported once per triangle whose BVH leaf box its partner's box
+// (grown by the contact margin) touches, as (a, b, TB_NO_COLOUR, triangle + 1): the midphase
+// of meshes, done where the pair is found so the narrowphase and the solver see one convex
+// pair per triangle and the four broadphases share it. Mesh bodies are large to every
+// broadphase, so only the plain walks over large bodies meet them.
 #ifndef TB_PAIRS_GLSL
 #define TB_PAIRS_GLSL
+
+#include "../midphase/mesh.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_broadphase_push push; };
 
@@ -41,11 +49,36 @@ void bp_begin(uint finder)
     bp_base = bp_writing() ? body_pair_count[finder] : 0u;
 }
 
+void bp_put(uint a, uint b, uint sub)
+{
+    if (bp_writing()) pairs[pair_half_base() + bp_base + bp_found] = uvec4(a, b, TB_NO_COLOUR, sub);
+    bp_found++;
+}
+
+// The pairs of (a, b), one of them a mesh body: one per triangle near the other's box.
+void bp_report_triangles(uint a, uint b)
+{
+    uint m = body_is(a, TB_BODY_FLAG_MESH) ? a : b, other = m == a ? b : a;
+    float reach = params.contact.x;
+    vec3 lo, hi;
+    mesh_local_box(body_pos[m].xyz, body_rot[m], body_aabb_min[other].xyz - reach,
+                   body_aabb_max[other].xyz + reach, lo, hi);
+    mesh_view mesh = mesh_of_shape(body_info[m].x);
+    uvec3 qlo, qhi;
+    if (!mesh_query(mesh, lo, hi, qlo, qhi)) return;
+    for (uint i = 0u; i < mesh.nodes;) {
+        uvec4 node = mesh.image.v[mesh.sections.x + i];
+        bool hit = bvh_node_overlaps(node, qlo, qhi);
+        if (hit && bvh_is_leaf(node)) bp_put(a, b, (node.w & ~TB_BVH_LEAF) + 1u);
+        i = bvh_next(i, node, hit);
+    }
+}
+
 // Report the pair (a, b), in the order the output keeps for it.
 void bp_report(uint a, uint b)
 {
-    if (bp_writing()) pairs[pair_half_base() + bp_base + bp_found] = uvec4(a, b, TB_NO_COLOUR, 0u);
-    bp_found++;
+    if (body_is(a, TB_BODY_FLAG_MESH) || body_is(b, TB_BODY_FLAG_MESH)) bp_report_triangles(a, b);
+    else bp_put(a, b, 0u);
 }
 
 // Every body slot must end here once per pass, found pairs or not.

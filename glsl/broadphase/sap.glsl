@@ -48,6 +48,7 @@ uint sap_axis()
 bool sap_is_large(uint body)
 {
     if (body_is(body, TB_BODY_FLAG_DYNAMIC)) return false;
+    if (body_is(body, TB_BODY_FLAG_MESH)) return true;   // its pairs are split by triangle
     vec3 side = body_aabb_max[body].xyz - body_aabb_min[body].xyz;
     float largest_dynamic = max(uintBitsToFloat(counters.grid.x), params.contact.x);
     return max(side.x, max(side.y, side.z)) > float(TB_SAP_LARGE_FACTOR) * largest_dynamic;

@@ -127,6 +127,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 /* tb_gpu_body info.y */
 #define TB_BODY_FLAG_ALIVE      TB_U(1)
 #define TB_BODY_FLAG_DYNAMIC    TB_U(2)
+#define TB_BODY_FLAG_MESH       TB_U(4)   /* its shape is a triangle mesh: every broadphase
+                                             treats it as a large static body, and its pairs
+                                             are split into one per triangle (midphase) */
 
 /* tb_gpu_shape info.x; equal to tb_shape_type in tumble.h */
 #define TB_GPU_SHAPE_SPHERE     TB_U(0)

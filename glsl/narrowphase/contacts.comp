@@ -31,12 +31,13 @@
 #include "hull_sphere.glsl"
 #include "pair.glsl"
 
-// Shape types in canonical order: sphere < box < plane < hull, so each routine knows which
-// shape comes first. Plane against plane never arrives (planes are static); it gets no
+// Shape types in canonical order: sphere < box < plane < hull < mesh, so each routine knows
+// which shape comes first. A mesh pair's points are the pass narrowphase/mesh_points'. Plane against plane never arrives (planes are static); it gets no
 // points. A box meets a hull through its hull data; box against box keeps its own path.
 uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
+    if (second.type == TB_GPU_SHAPE_MESH) return 0u;   // mesh_points.comp's
     bool hull = second.type == TB_GPU_SHAPE_HULL;
     if (first.type == TB_GPU_SHAPE_SPHERE) {
         if (second.type == TB_GPU_SHAPE_SPHERE) return np_sphere_sphere(t, first, second, margin, normal);

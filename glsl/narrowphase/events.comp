@@ -50,7 +50,7 @@ void begins()
     uint p = pair_thread_index();
     if (p >= counters.state.z || manifolds[p].info.x == 0u) return;
     uint a = manifolds[p].info.y, b = manifolds[p].info.z;
-    uint previous = np_find_previous(a, b, current_half() ^ 1u);
+    uint previous = np_find_previous(a, b, pairs[pair_half_base() + p].w, current_half() ^ 1u);
     if (previous != NP_NONE) {
         MarkArray(push.address.zw).v[previous] = counters.state.y + 1u;
         if (prev_manifolds[previous].info.x != 0u) return;

@@ -59,28 +59,29 @@ struct np_target {
 
 // Last step's pair (a, b) in the run of pairs its finder found (the finder is a or b;
 // src/broadphase/broadphase.h), which body_pairs[finder] locates (x, y for even halves,
-// z, w for odd ones; counts are 0 before the first step).
-uint np_find_in_run(uint finder, uint a, uint b, uint prev_half)
+// z, w for odd ones; counts are 0 before the first step). `sub` tells the pairs of one
+// body pair apart: the triangle + 1 of a mesh pair, else 0.
+uint np_find_in_run(uint finder, uint a, uint b, uint sub, uint prev_half)
 {
     uvec4 owned = body_pairs[finder];
     uvec2 run = prev_half == 0u ? owned.xy : owned.zw;
     uint first = prev_half * params.capacity.x + run.x;
     for (uint i = 0u; i < run.y; i++)
-        if (pairs[first + i].xy == uvec2(a, b)) return run.x + i;
+        if (pairs[first + i].xyw == uvec3(a, b, sub)) return run.x + i;
     return NP_NONE;
 }
 
-uint np_find_previous(uint a, uint b, uint prev_half)
+uint np_find_previous(uint a, uint b, uint sub, uint prev_half)
 {
-    uint found = np_find_in_run(a, a, b, prev_half);
-    return found != NP_NONE ? found : np_find_in_run(b, a, b, prev_half);
+    uint found = np_find_in_run(a, a, b, sub, prev_half);
+    return found != NP_NONE ? found : np_find_in_run(b, a, b, sub, prev_half);
 }
 
-np_target np_target_make(uint slot, uint a, uint b, uint prev_half)
+np_target np_target_make(uint slot, uint a, uint b, uint sub, uint prev_half)
 {
     np_target t;
     t.slot = slot;
-    t.prev = np_find_previous(a, b, prev_half);
+    t.prev = np_find_previous(a, b, sub, prev_half);
     t.prev_count = 0u;
     t.prev_features = uvec4(0u);
     if (t.prev != NP_NONE) {

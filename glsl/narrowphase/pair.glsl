@@ -19,6 +19,7 @@ float pair_margin(uint a, uint b)
 
 struct np_pair {
     uint a, b;
+    uint sub;                 // a mesh pair's triangle + 1, else 0
     np_body body_a, body_b;
     np_body first, second;    // the canonical order
     bool swapped;             // first is b
@@ -29,13 +30,14 @@ struct np_pair {
 np_pair np_pair_load(uint p)
 {
     np_pair q;
-    uvec2 pair = pairs[pair_half_base() + p].xy;
+    uvec4 pair = pairs[pair_half_base() + p];
     q.a = pair.x;
     q.b = pair.y;
+    q.sub = pair.w;
     q.body_a = np_load_body(q.a);
     q.body_b = np_load_body(q.b);
     q.swapped = q.body_a.type > q.body_b.type || (q.body_a.type == q.body_b.type && q.a > q.b);
-    q.t = np_target_make(p, q.a, q.b, current_half() ^ 1u);
+    q.t = np_target_make(p, q.a, q.b, q.sub, current_half() ^ 1u);
     // Selected operands (not one call per order): both orders run the very same
     // instructions, so their points agree to the bit.
     q.first = q.swapped ? q.body_b : q.body_a;

@@ -28,6 +28,18 @@ static tb_result check_material(tb_world* w, const tb_shape_def* def, tb_shape_i
     return TB_OK;
 }
 
+/* The caller's vertices as the packed xyz triples geometry code reads. */
+static float* copy_points(const tb_vec3* points, uint32_t count)
+{
+    float* xyz = malloc(((size_t)count + 1) * 3 * sizeof *xyz);
+    for (uint32_t i = 0; xyz && i < count; i++) {
+        xyz[3 * i] = points[i].x;
+        xyz[3 * i + 1] = points[i].y;
+        xyz[3 * i + 2] = points[i].z;
+    }
+    return xyz;
+}
+
 static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
 {
     tb_gpu_shape s;
@@ -94,13 +106,8 @@ tb_result tb_shape_create_hull(tb_world* w, const tb_shape_def* def, const tb_ve
     tb_result r = check_material(w, def, out);
     if (r) return r;
     if (!points) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "hull points are NULL");
-    float* xyz = malloc(((size_t)count + 1) * 3 * sizeof *xyz);
+    float* xyz = copy_points(points, count);
     if (!xyz) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
-    for (uint32_t i = 0; i < count; i++) {
-        xyz[3 * i] = points[i].x;
-        xyz[3 * i + 1] = points[i].y;
-        xyz[3 * i + 2] = points[i].z;
-    }
     tb_hull hull;
     char error[256];
     int failed = tb_hull_build(xyz, count, &hull, error, sizeof error);
@@ -115,6 +122,38 @@ tb_result tb_shape_create_hull(tb_world* w, const tb_shape_def* def, const tb_ve
                                  (hi.y - lo.y) / 2, (hi.z - lo.z) / 2 }, (tb_gpu_vec4){ 0 });
     gpu.aabb_center = (tb_gpu_vec4){ (hi.x + lo.x) / 2, (hi.y + lo.y) / 2, (hi.z + lo.z) / 2, 0 };
     return add_hull_shape(w, &rec, &gpu, &hull, out);
+}
+
+tb_result tb_shape_create_mesh(tb_world* w, const tb_shape_def* def, const tb_vec3* vertices,
+                               uint32_t vertex_count, const uint32_t* indices,
+                               uint32_t triangle_count, tb_shape_id* out)
+{
+    tb_result r = check_material(w, def, out);
+    if (r) return r;
+    if (!vertices || !indices)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "mesh vertices or indices are NULL");
+    tb_mesh* mesh = malloc(sizeof *mesh);
+    float* xyz = mesh ? copy_points(vertices, vertex_count) : NULL;
+    if (!xyz) {
+        free(mesh);
+        return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    }
+    char error[256];
+    int failed = tb_mesh_build(xyz, vertex_count, indices, triangle_count, mesh, error,
+                               sizeof error);
+    free(xyz);
+    if (failed) {
+        free(mesh);
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "triangle mesh: %s", error);
+    }
+    const float* lo = mesh->bvh.lo;
+    const float* hi = mesh->bvh.hi;
+    tb_shape_record rec = { .type = TB_SHAPE_MESH, .material = *def, .mesh = mesh };
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_MESH, (tb_vec3){ (hi[0] - lo[0]) / 2,
+                                 (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
+    gpu.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
+                                     (hi[2] + lo[2]) / 2, 0 };
+    return tb_shapes_add(w, &rec, &gpu, out);
 }
 
 tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
@@ -220,5 +259,29 @@ tb_result tb_shape_get_hull_vertices(const tb_world* cw, tb_shape_id id, tb_vec3
     for (uint32_t i = 0; i < h->vertex_count && i < capacity; i++)
         out[i] = (tb_vec3){ h->vertices[i][0], h->vertices[i][1], h->vertices[i][2] };
     *count = h->vertex_count;
+    return TB_OK;
+}
+
+tb_result tb_shape_get_mesh_info(const tb_world* cw, tb_shape_id id, tb_mesh_info* out)
+{
+    tb_world* w = (tb_world*)cw;
+    uint32_t slot;
+    tb_result r;
+    tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
+    if (!s) return r;
+    if (s->type != TB_SHAPE_MESH)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a mesh",
+                       id.index1, id.world, id.generation);
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    const tb_mesh* m = s->mesh;
+    uint32_t active = 0;
+    for (uint32_t t = 0; t < m->triangle_count; t++)
+        for (uint32_t k = 0; k < 3; k++) active += (m->flags[t] >> k) & 1u;
+    *out = (tb_mesh_info){
+        .vertex_count = m->vertex_count, .triangle_count = m->triangle_count,
+        .degenerate_count = m->degenerate_count, .active_edge_count = active,
+        .aabb_min = { m->bvh.lo[0], m->bvh.lo[1], m->bvh.lo[2] },
+        .aabb_max = { m->bvh.hi[0], m->bvh.hi[1], m->bvh.hi[2] },
+    };
     return TB_OK;
 }

@@ -210,6 +210,8 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     if (!np->kit.pipelines) return;
     tb_pipeline_destroy(np->kit.pipelines, np->contacts);
     tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
+    tb_pipeline_destroy(np->kit.pipelines, np->mesh_points);
+    tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
     tb_pipeline_destroy(np->kit.pipelines, np->keep);
     hull_table_destroy(np);
     memset(np, 0, sizeof *np);
@@ -233,6 +235,20 @@ tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_li
                                             VkBuffer counters)
 {
     return per_pair(np, list, np->hull_points, counters);
+}
+
+tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
+                                            VkBuffer counters)
+{
+    tb_pipelines* p = np->kit.pipelines;
+    tb_result r = TB_OK;
+    if (!np->mesh_points)
+        r = tb_pipeline_create(p, "narrowphase/mesh_points", TB_WORKGROUP_SIZE, &np->mesh_points);
+    if (!r && !np->mesh_reduce)
+        r = tb_pipeline_create(p, "narrowphase/mesh_reduce", TB_WORKGROUP_SIZE, &np->mesh_reduce);
+    if (!r) r = per_pair(np, list, np->mesh_points, counters);
+    if (!r) r = per_pair(np, list, np->mesh_reduce, counters);
+    return r;
 }
 
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,

@@ -9,6 +9,10 @@
  *                            only their separating axis
  *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
  *                            while the world has hull shapes
+ *   narrowphase/mesh_points  the points of each pair of a body and a mesh triangle (the
+ *                            broadphase split the body pair by triangle), then
+ *   narrowphase/mesh_reduce  at most four of them per body pair; both recorded only while
+ *                            the world has mesh shapes
  *   narrowphase/keep         this step's manifolds become last step's
  * Per-pair passes are dispatched with counters.pair_dispatch.
  *
@@ -40,6 +44,7 @@ typedef struct tb_hull_table {
 typedef struct tb_narrowphase {
     tb_gpu_kit kit;
     VkPipeline contacts, hull_points, keep;
+    VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
     tb_hull_table hulls;
 } tb_narrowphase;
 
@@ -62,6 +67,10 @@ tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list*
 /// narrowphase/hull_points, the points of the touching hull pairs (recorded only while the
 /// world has hull shapes).
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
+                                            VkBuffer counters);
+/// narrowphase/mesh_points and mesh_reduce, the points of the mesh pairs (recorded only
+/// while the world has mesh shapes; their pipelines are made the first time).
+tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
 /// narrowphase/keep.
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,

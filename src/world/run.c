@@ -49,6 +49,7 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
 {
     VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
     VkDeviceSize bytes = shape_bytes + tb_hull_table_upload_bytes(&w->narrowphase) +
+                         tb_shapes_mesh_upload_bytes(w) +
                          tb_body_store_upload_bytes(&w->store) +
                          tb_body_store_download_bytes(&w->store, mask) + 64;
     tb_transfer* t = &w->transfer;
@@ -68,6 +69,7 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
         w->shapes_dirty = 0;
     }
     tb_hull_table_record_upload(&w->narrowphase, t);
+    tb_shapes_record_mesh_uploads(w, t);
     tb_body_store_record_uploads(&w->store, t);
     if (mask) {
         tb_transfer_barrier(t);
@@ -90,6 +92,7 @@ tb_result tb_world_fetch(tb_world* w, uint32_t mask)
 tb_result tb_world_flush(tb_world* w)
 {
     if (!w->store.dirty_count && !w->shapes_dirty && !w->narrowphase.hulls.dirty &&
+        !w->mesh_uploads &&
         w->shape_slots.used <= w->shape_buffer_capacity)
         return TB_OK;
     tb_result r = tb_world_prepare_shapes(w);

@@ -77,14 +77,43 @@ static void count_hull_shape(tb_world* w, int change)
     if ((before == 0) != (w->hull_shapes == 0)) w->step_built = 0;
 }
 
-/* Hulls (boxes too) own their geometry; the hull table packs it for the GPU. */
+/* Likewise the mesh passes while mesh shapes exist. */
+static void count_mesh_shape(tb_world* w, int change)
+{
+    uint32_t before = w->mesh_shapes;
+    w->mesh_shapes = (uint32_t)((int64_t)before + change);
+    if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
+}
+
+/* A mesh's GPU image has a buffer of its own, which the shape finds by its device address
+ * (tb_gpu_shape.hull.xy); the next submission uploads it. */
+static tb_result create_mesh_buffer(tb_world* w, tb_shape_record* rec, tb_gpu_shape* gpu)
+{
+    VkDeviceSize bytes = tb_mesh_image_size(rec->mesh) * sizeof(tb_gpu_uvec4);
+    tb_result r = tb_buffer_create(&w->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &rec->mesh_buffer);
+    if (r) return r;
+    gpu->hull = tb_gpu_addresses(rec->mesh_buffer.address, 0);
+    rec->mesh_pending = 1;
+    return TB_OK;
+}
+
+/* Hulls (boxes too) and meshes own their geometry; the hull table packs hulls for the GPU,
+ * a mesh has its own buffer. */
 tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* gpu,
                         tb_shape_id* out)
 {
-    tb_result r = add_shape(w, rec, gpu, out);
+    tb_gpu_shape entry = *gpu;
+    tb_result r = rec->mesh ? create_mesh_buffer(w, rec, &entry) : TB_OK;
+    if (!r) r = add_shape(w, rec, &entry, out);
     if (r) {
+        tb_buffer_destroy(&w->memory, &rec->mesh_buffer);
         tb_shape_release_hull(rec);
         return r;
+    }
+    if (rec->mesh) {
+        count_mesh_shape(w, +1);
+        w->mesh_uploads++;
     }
     if (!rec->hull) return TB_OK;
     w->narrowphase.hulls.dirty = 1;
@@ -94,6 +123,11 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* g
 
 void tb_shape_release_hull(tb_shape_record* s)
 {
+    if (s->mesh) {
+        tb_mesh_free(s->mesh);
+        free(s->mesh);
+        s->mesh = NULL;
+    }
     if (!s->hull) return;
     tb_hull_free(s->hull);
     free(s->hull);
@@ -106,8 +140,37 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     s->alive = 0;
     if (s->hull) w->narrowphase.hulls.dirty = 1;
     if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
+    if (s->mesh) {
+        count_mesh_shape(w, -1);
+        if (s->mesh_pending) w->mesh_uploads--;
+        s->mesh_pending = 0;
+        tb_buffer_destroy(&w->memory, &s->mesh_buffer);
+    }
     tb_shape_release_hull(s);
     tb_slots_give(&w->shape_slots, slot);
+}
+
+VkDeviceSize tb_shapes_mesh_upload_bytes(const tb_world* w)
+{
+    VkDeviceSize bytes = 0;
+    for (uint32_t s = 0; w->mesh_uploads && s < w->shape_slots.used; s++)
+        if (w->shapes[s].alive && w->shapes[s].mesh_pending)
+            bytes += tb_mesh_image_size(w->shapes[s].mesh) * sizeof(tb_gpu_uvec4);
+    return bytes;
+}
+
+void tb_shapes_record_mesh_uploads(tb_world* w, tb_transfer* t)
+{
+    for (uint32_t s = 0; w->mesh_uploads && s < w->shape_slots.used; s++) {
+        tb_shape_record* rec = &w->shapes[s];
+        if (!rec->alive || !rec->mesh_pending) continue;
+        VkDeviceSize bytes = tb_mesh_image_size(rec->mesh) * sizeof(tb_gpu_uvec4);
+        void* dst = tb_transfer_upload(t, rec->mesh_buffer.buffer, 0, bytes);
+        if (!dst) continue;   /* the transfer's error stands; the upload waits */
+        tb_mesh_pack(rec->mesh, dst);
+        rec->mesh_pending = 0;
+        w->mesh_uploads--;
+    }
 }
 
 tb_result tb_shapes_create_buffer(tb_world* w, uint32_t capacity)

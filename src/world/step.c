@@ -90,15 +90,21 @@ static void broadphase_stage(builder* b)
 
 /* Manifolds of every pair (narrowphase/contacts), then the points of the touching hull pairs
  * (narrowphase/hull_points, see contacts.comp), a stage of its own so the stats tell the two
- * apart, recorded only while the world has hull shapes (box pairs never defer theirs). */
+ * apart, recorded only while the world has hull shapes (box pairs never defer theirs); then
+ * the mesh pairs' (narrowphase/mesh_points), while it has mesh shapes. */
 static void narrowphase_stage(builder* b)
 {
     tb_world* w = b->w;
     if (!b->r) b->r = tb_narrowphase_record_contacts(&w->narrowphase, &b->list, b->counters);
     end_stage(b, "narrowphase/contacts");
-    if (!w->hull_shapes) return;
-    if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list, b->counters);
-    end_stage(b, "narrowphase/hull_points");
+    if (w->hull_shapes) {
+        if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list, b->counters);
+        end_stage(b, "narrowphase/hull_points");
+    }
+    if (w->mesh_shapes) {
+        if (!b->r) b->r = tb_narrowphase_record_mesh_points(&w->narrowphase, &b->list, b->counters);
+        end_stage(b, "narrowphase/mesh_points");
+    }
 }
 
 static void keep_stage(builder* b)

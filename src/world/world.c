@@ -119,6 +119,8 @@ void tb_world_free(tb_world* w)
         tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);
         tb_buffer_destroy(&w->memory, &w->shape_buffer);
+        for (uint32_t i = 0; i < w->shape_slots.used; i++)
+            tb_buffer_destroy(&w->memory, &w->shapes[i].mesh_buffer);
         tb_narrowphase_destroy(&w->narrowphase);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
         tb_transfer_destroy(&w->transfer);

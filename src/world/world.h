@@ -48,6 +48,9 @@ typedef struct tb_shape_record {
     tb_vec3 unit_inertia;   ///< principal moments of inertia per kg of mass
     uint32_t users;         ///< live bodies using the shape
     tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
+    tb_mesh* mesh;          ///< meshes: their geometry (owned); else NULL
+    tb_buffer mesh_buffer;  ///< meshes: the GPU image (tb_gpu_mesh_header), by device address
+    int mesh_pending;       ///< meshes: the image is not uploaded yet
 } tb_shape_record;
 
 /// Contact events of one step, as the callbacks get them.
@@ -119,6 +122,8 @@ struct tb_world {
     uint32_t bouncy_shapes;      ///< shapes ever made with restitution > 0: the block solver
                                  ///< records its restitution pass once there is one
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
+    uint32_t mesh_shapes;        ///< live TB_SHAPE_MESH shapes: the step records the mesh passes
+    uint32_t mesh_uploads;       ///< mesh images waiting for the next submission
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
     uint64_t steps, submits;
@@ -198,8 +203,11 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* record, const tb_gpu_shape
                         tb_shape_id* out);
 /// Remove a shape no body uses.
 void tb_shapes_remove(tb_world* w, uint32_t slot);
-/// Free a shape's hull geometry, if it has any.
+/// Free a shape's hull or mesh geometry on the host, if it has any.
 void tb_shape_release_hull(tb_shape_record* s);
+/// Staging bytes of the mesh images not uploaded yet, and their uploads.
+VkDeviceSize tb_shapes_mesh_upload_bytes(const tb_world* w);
+void tb_shapes_record_mesh_uploads(tb_world* w, tb_transfer* t);
 /// The GPU shape table, created at `capacity` entries (replacing any).
 tb_result tb_shapes_create_buffer(tb_world* w, uint32_t capacity);
 /// Pack the hulls if they changed and give the GPU shape table room for every shape slot

@@ -1,0 +1,95 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Narrowphase of mesh pairs, second pass: a body pair split by triangle keeps at most four
+// points over all its triangles' manifolds (a box over a fine mesh would otherwise hold
+// dozens, and every one costs the solver). The pairs of one body pair are consecutive (the
+// broadphase writes them together); the thread of the first does the whole run: it picks
+// four points as the narrowphase reduces a clipped polygon (hull.glsl: the deepest, the
+// farthest from it in the plane of the deepest point's normal, the farthest either side of
+// the line through the two), in the run's order, and takes the others out of their
+// manifolds. Each point keeps its own triangle's normal and warm start. Dispatched
+// indirectly over counters.pair_dispatch.
+#include "world.glsl"
+#include "quat.glsl"
+#include "manifold.glsl"
+#include "box_box.glsl"
+#include "hull.glsl"
+
+// Whether pairs p and p + 1 belong to the same split body pair.
+bool same_run(uvec4 p, uvec4 next)
+{
+    return next.w != 0u && next.xy == p.xy;
+}
+
+// Point `point` (pair << 2 | k) of the run.
+vec4 run_point(uint point)
+{
+    return manifolds[point >> 2u].point[point & 3u];
+}
+
+// Keeps only the points in `kept` of manifold q; returns how many it took out.
+uint keep_points(uint q, uvec4 kept)
+{
+    uint count = manifolds[q].info.x, left = 0u;
+    for (uint k = 0u; k < count; k++) {
+        if (!any(equal(kept, uvec4((q << 2u) | k)))) continue;
+        if (left != k) {
+            manifolds[q].point[left] = manifolds[q].point[k];
+            manifolds[q].impulse[left] = manifolds[q].impulse[k];
+            manifolds[q].feature[left] = manifolds[q].feature[k];
+            set_manifold_slip(q, left, slip_of_point(manifolds[q].slip[k >> 1u], k));
+        }
+        left++;
+    }
+    for (uint k = left; k < count; k++) {
+        manifolds[q].point[k] = vec4(0.0);
+        manifolds[q].impulse[k] = vec4(0.0);
+        manifolds[q].feature[k] = 0u;
+        set_manifold_slip(q, k, vec2(0.0));
+    }
+    manifolds[q].info.x = left;
+    return count - left;
+}
+
+void reduce_run(uint first, uint end)
+{
+    uvec4 kept = uvec4(NP_NONE);
+    vec3 p0 = vec3(0.0), p1 = vec3(0.0), n = vec3(0.0, 1.0, 0.0);
+    for (uint pick = 0u; pick < 4u; pick++) {
+        float best = -NP_BIG;
+        for (uint q = first; q < end; q++) {
+            uint count = manifolds[q].info.x;
+            for (uint k = 0u; k < count; k++) {
+                uint point = (q << 2u) | k;
+                vec4 x = manifolds[q].point[k];
+                if (any(equal(kept, uvec4(point)))) continue;
+                float score = np_reduce_score(pick, x.xyz, x.w, p0, p1, n);
+                if (score > best) {
+                    best = score;
+                    kept[pick] = point;
+                }
+            }
+        }
+        if (kept[pick] == NP_NONE) break;
+        if (pick == 0u) {
+            p0 = run_point(kept[0]).xyz;
+            n = manifolds[kept[0] >> 2u].normal.xyz;
+        }
+        if (pick == 1u) p1 = run_point(kept[1]).xyz;
+    }
+    uint removed = 0u;
+    for (uint q = first; q < end; q++) removed += keep_points(q, kept);
+    if (removed != 0u) atomicAdd(counters.solver.w, 0u - removed);
+}
+
+void main()
+{
+    if (counters.state.x != 0u) return;
+    uint p = pair_thread_index(), pairs_now = counters.state.z, base = pair_half_base();
+    if (p >= pairs_now) return;
+    uvec4 pair = pairs[base + p];
+    if (pair.w == 0u || (p > 0u && same_run(pairs[base + p - 1u], pair))) return;
+    uint end = p + 1u, total = manifolds[p].info.x;
+    for (; end < pairs_now && same_run(pair, pairs[base + end]); end++) total += manifolds[end].info.x;
+    if (total > uint(TB_MAX_MANIFOLD_POINTS)) reduce_run(p, end);
+}

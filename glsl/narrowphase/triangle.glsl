@@ -1,0 +1,321 @@
+// A convex shape against one triangle of a mesh (the shape first in the canonical order, the
+// mesh second; normals point from the shape to the triangle). Triangles are one-sided: a
+// shape whose centre lies behind a triangle's plane gets no contact from it.
+//
+// Internal edges: a triangle's inactive edges and vertices (layout.h, TB_MESH_EDGE_ACTIVE_*)
+// lie where the mesh is flat or folds concavely, so a contact there takes the triangle's
+// face normal instead of the edge's or the vertex's direction. A body sliding over a flat
+// mesh then meets only face normals, and no seam between triangles pushes it up or back.
+//
+// Sphere: the triangle's point closest to the centre (Ericson, "Real-Time Collision
+// Detection", 5.1.5), one point, feature key 0.
+// Hull (boxes through their hull data): the separating axis test in the hull's frame with the
+// triangle as a flat polytope: the triangle's normal, the hull's face normals, and the
+// crosses of hull edges with the triangle's active edges that build a face of the Minkowski
+// difference (hull_sat.glsl's arc test, the triangle edge's arc running from the face normal
+// to the edge's outward direction: the front quarter of it, one-sided). The triangle's face
+// wins ties (the tolerances of box_box.glsl). Points: the incident hull face clipped by the
+// triangle's sides, or the triangle clipped by the reference hull face's sides, reduced to
+// four (hull.glsl); one point for an edge axis.
+// Feature keys: triangle reference: bit 30 | incident face << 14 | clip feature; hull face
+// reference: face << 22 | clip feature; edges: bit 31 | hull edge << 15 | triangle edge.
+#ifndef TB_NP_TRIANGLE_GLSL
+#define TB_NP_TRIANGLE_GLSL
+
+struct np_triangle {
+    vec3 v0, v1, v2;    // in the frame the routine works in
+    vec3 normal;        // unit, towards the front; zero for a degenerate triangle
+    uint flags;         // TB_MESH_*
+};
+
+// Triangle `index` of mesh body `mesh`, mapped into a frame by x -> rot * x + pos from the
+// mesh's body frame.
+np_triangle np_load_triangle(np_body mesh, uint index, mat3 rot, vec3 pos)
+{
+    mesh_view m = mesh_of_shape(mesh.shape);
+    uvec4 tri = mesh_triangle(m, index);
+    np_triangle t;
+    t.v0 = rot * mesh_vertex(m, tri.x) + pos;
+    t.v1 = rot * mesh_vertex(m, tri.y) + pos;
+    t.v2 = rot * mesh_vertex(m, tri.z) + pos;
+    t.flags = tri.w;
+    vec3 n = cross(t.v1 - t.v0, t.v2 - t.v0);
+    float n2 = dot(n, n);
+    if (n2 == 0.0) t.flags |= TB_MESH_DEGENERATE;
+    t.normal = n2 > 0.0 ? n * inversesqrt(n2) : vec3(0.0);
+    return t;
+}
+
+vec3 np_tri_vertex(np_triangle t, uint k)
+{
+    return k == 0u ? t.v0 : (k == 1u ? t.v1 : t.v2);
+}
+
+bool np_tri_edge_active(np_triangle t, uint k)
+{
+    return (t.flags & (1u << k)) != 0u;
+}
+
+// Vertex k ends edge k + 2 (mod 3) and starts edge k.
+bool np_tri_vertex_active(np_triangle t, uint k)
+{
+    return np_tri_edge_active(t, k) || np_tri_edge_active(t, (k + 2u) % 3u);
+}
+
+// Features of a triangle: 0 its face, 1 + k edge k, 4 + k vertex k.
+bool np_tri_feature_active(np_triangle t, uint feature)
+{
+    if (feature == 0u) return true;
+    return feature < 4u ? np_tri_edge_active(t, feature - 1u)
+                        : np_tri_vertex_active(t, feature - 4u);
+}
+
+// The triangle's point closest to p and its feature (Voronoi regions of the vertices, then
+// the edges, then the face).
+vec3 np_tri_closest(np_triangle t, vec3 p, out uint feature)
+{
+    vec3 a = t.v0, b = t.v1, c = t.v2, ab = b - a, ac = c - a;
+    vec3 ap = p - a, bp = p - b, cp = p - c;
+    float d1 = dot(ab, ap), d2 = dot(ac, ap), d3 = dot(ab, bp), d4 = dot(ac, bp);
+    float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    float vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    feature = 0u;
+    if (d1 <= 0.0 && d2 <= 0.0) feature = 4u;
+    else if (d3 >= 0.0 && d4 <= d3) feature = 5u;
+    else if (d6 >= 0.0 && d5 <= d6) feature = 6u;
+    else if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) feature = 1u;
+    else if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) feature = 2u;
+    else if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) feature = 3u;
+    if (feature >= 4u) return np_tri_vertex(t, feature - 4u);
+    if (feature == 1u) return a + ab * (d1 / (d1 - d3));
+    if (feature == 2u) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    if (feature == 3u) return a + ac * (d2 / (d2 - d6));
+    float scale = 1.0 / (va + vb + vc);
+    return a + ab * (vb * scale) + ac * (vc * scale);
+}
+
+// ---- sphere ---------------------------------------------------------------------------------
+
+// The triangle in world space.
+uint np_sphere_triangle(np_target t, np_body s, np_triangle tri, float margin, out vec3 normal)
+{
+    normal = vec3(0.0);
+    if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
+    float height = dot(tri.normal, s.pos - tri.v0);
+    if (height < 0.0 || height >= s.params.x + margin) return 0u;
+    uint feature;
+    vec3 q = np_tri_closest(tri, s.pos, feature);
+    vec3 gap = s.pos - q, outward = tri.normal;
+    if (feature != 0u && np_tri_feature_active(tri, feature) &&
+        dot(gap, gap) > 1.0e-12 * (dot(s.pos, s.pos) + 1.0)) {
+        outward = normalize(gap);
+    } else {
+        q = s.pos - tri.normal * height;   // the face's plane below the centre
+    }
+    normal = -outward;
+    return np_sphere_point(t, s, normal, q, margin);
+}
+
+// ---- hull -----------------------------------------------------------------------------------
+
+// Whether the triangle's deepest feature along -n (hull frame) is active: its deepest vertex,
+// or the edge of its two deepest when they lie level.
+bool np_tri_deepest_active(np_triangle tri, vec3 n)
+{
+    float d0 = dot(n, tri.v0), d1 = dot(n, tri.v1), d2 = dot(n, tri.v2);
+    uint k = d0 <= d1 && d0 <= d2 ? 0u : (d1 <= d2 ? 1u : 2u);
+    float least = min(d0, min(d1, d2));
+    float size = length(tri.v1 - tri.v0) + length(tri.v2 - tri.v1) + length(tri.v0 - tri.v2);
+    float level = 1.0e-4 * size;
+    uint next = (k + 1u) % 3u, before = (k + 2u) % 3u;
+    float dn = next == 0u ? d0 : (next == 1u ? d1 : d2);
+    float db = before == 0u ? d0 : (before == 1u ? d1 : d2);
+    if (dn - least <= level) return np_tri_edge_active(tri, k);
+    if (db - least <= level) return np_tri_edge_active(tri, before);
+    return np_tri_vertex_active(tri, k);
+}
+
+// The hull face lying lowest against the triangle: how far the triangle's deepest vertex is
+// above it.
+float np_tri_best_hull_face(np_hull h, np_triangle tri, out uint face)
+{
+    float best = -NP_BIG;
+    face = 0u;
+    for (uint f = 0u; f < h.faces; f++) {
+        vec4 plane = np_hull_plane(h, f);
+        float s = min(dot(plane.xyz, tri.v0), min(dot(plane.xyz, tri.v1), dot(plane.xyz, tri.v2))) -
+                  plane.w;
+        if (s > best) {
+            best = s;
+            face = f;
+        }
+    }
+    return best;
+}
+
+// The crossing of a hull edge and an active triangle edge that separates most: xyz the unit
+// axis pointing from the hull to the triangle, w the separation; edges in `which` (x hull,
+// y triangle).
+vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which)
+{
+    vec4 best = vec4(0.0, 0.0, 0.0, -NP_BIG);
+    which = uvec2(0u);
+    for (uint k = 0u; k < 3u; k++) {
+        if (!np_tri_edge_active(tri, k)) continue;
+        vec3 t0 = np_tri_vertex(tri, k), dk = np_tri_vertex(tri, (k + 1u) % 3u) - t0;
+        vec3 out_k = cross(dk, tri.normal);   // in the plane, away from the triangle
+        for (uint e = 0u; e < h.edges; e++) {
+            uvec2 faces = np_hull_edge_faces(h, e);
+            vec3 u = np_hull_plane(h, faces.x).xyz, v = np_hull_plane(h, faces.y).xyz;
+            vec3 ea = cross(u, v);
+            // The triangle edge's arc from its face normal to out_k: cross(normal, out_k) is dk.
+            if (!np_minkowski_face(u, v, ea, tri.normal, out_k, dk)) continue;
+            vec3 n = cross(ea, dk);
+            float n2 = dot(n, n);
+            if (n2 < NP_EDGE_PARALLEL * dot(ea, ea) * dot(dk, dk)) continue;
+            n *= inversesqrt(n2);
+            vec3 pe = np_hull_vertex(h, np_hull_edge_vertices(h, e).x);
+            if (dot(n, pe) < 0.0) n = -n;   // away from the hull's centre
+            float s = dot(n, t0 - pe);
+            if (s > best.w) {
+                best = vec4(n, s);
+                which = uvec2(e, k);
+            }
+        }
+    }
+    return best;
+}
+
+// Side s of the reference: a triangle side (tri_ref) or a side of hull face `ref`.
+vec4 np_tri_ref_side(bool tri_ref, np_triangle tri, np_hull h, uvec2 ref, uint s, vec3 normal)
+{
+    if (!tri_ref) return np_clip_side(h, ref, s, normal);
+    vec3 t0 = np_tri_vertex(tri, s), side = cross(np_tri_vertex(tri, (s + 1u) % 3u) - t0, normal);
+    side = normalize(side);
+    return vec4(side, dot(side, t0));
+}
+
+// Face contact, in the hull's frame: the reference is the triangle (tri_ref, normal the
+// triangle's) or hull face `face` (normal its plane's); the incident polygon is the hull's
+// face most anti-parallel to the normal, or the triangle. Returns the point count.
+uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, bool tri_ref,
+                         uint face, float margin)
+{
+    vec4 plane = tri_ref ? vec4(tri.normal, dot(tri.normal, tri.v0)) : np_hull_plane(h, face);
+    uvec2 ref = tri_ref ? uvec2(0u, 3u) : np_hull_face(h, face);
+    uint inc = tri_ref ? np_incident_face(h, plane.xyz) : 0u;
+    uint key = tri_ref ? (1u << 30u) | (inc << 14u) : face << 22u;
+    vec4 poly[2u * NP_CLIP_MAX];
+    uvec2 incident = tri_ref ? np_hull_face(h, inc) : uvec2(0u, 3u);
+    uint n = incident.y;
+    for (uint k = 0u; k < n; k++) {
+        vec3 x = tri_ref ? np_hull_face_vertex(h, incident, k) : np_tri_vertex(tri, k);
+        poly[k] = np_clip_corner(x, np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
+    }
+    float tol = 1.0e-5 * (length(tri.v0) + length(np_hull_vertex(h, 0u))) +
+                1.0e-6 * (length(hull.pos) + 1.0);
+    uint from = 0u, to = NP_CLIP_MAX;
+    for (uint s = 0u; s < ref.y && n > 0u; s++) {
+        vec4 side = np_tri_ref_side(tri_ref, tri, h, ref, s, plane.xyz);
+        if (side.xyz == vec3(0.0)) continue;
+        uint m = 0u;
+        vec4 p = poly[from + n - 1u];
+        float dp = dot(side.xyz, p.xyz) - side.w - tol;
+        for (uint k = 0u; k < n; k++) {
+            vec4 q = poly[from + k];
+            float dq = dot(side.xyz, q.xyz) - side.w - tol;
+            if ((dp > 0.0) != (dq > 0.0) && m < NP_CLIP_MAX)
+                poly[to + m++] = np_clip_crossing(p, q, dp, dq, s, dq > 0.0);
+            if (dq <= 0.0 && m < NP_CLIP_MAX) poly[to + m++] = q;
+            p = q;
+            dp = dq;
+        }
+        n = m;
+        from = to;
+        to = NP_CLIP_MAX - to;
+    }
+    // Heights above the reference plane (a hull corner above the triangle, or a triangle
+    // corner outside the hull face): negative is overlap.
+    uint near = 0u;
+    for (uint k = 0u; k < n; k++)
+        if (dot(plane.xyz, poly[from + k].xyz) - plane.w < margin) near++;
+    uvec4 kept = uvec4(NP_NONE);
+    if (near > 4u) {
+        vec3 p0 = vec3(0.0), p1 = vec3(0.0);
+        for (uint pick = 0u; pick < 4u; pick++) {
+            float best = -NP_BIG;
+            for (uint k = 0u; k < n; k++) {
+                vec3 x = poly[from + k].xyz;
+                float height = dot(plane.xyz, x) - plane.w;
+                if (height >= margin || any(equal(kept, uvec4(k)))) continue;
+                float score = np_reduce_score(pick, x, height, p0, p1, plane.xyz);
+                if (score > best) {
+                    best = score;
+                    kept[pick] = k;
+                }
+            }
+            if (pick == 0u) p0 = poly[from + kept[0]].xyz;
+            if (pick == 1u) p1 = poly[from + kept[1]].xyz;
+        }
+    }
+    uint count = 0u;
+    for (uint k = 0u; k < n; k++) {
+        vec4 c = poly[from + k];
+        float height = dot(plane.xyz, c.xyz) - plane.w;
+        if (height >= margin || (near > 4u && !any(equal(kept, uvec4(k))))) continue;
+        vec3 x = tri_ref ? c.xyz : np_clip_onto_face(h, ref, plane.xyz, c.xyz);
+        vec3 mid = x - plane.xyz * (0.5 * height);   // midway between the surfaces
+        np_emit(t, count, hull.pos + hull.rot * mid, height, key | (uint(c.w) & 0xfffu));
+        count++;
+    }
+    return count;
+}
+
+// Edge axis: one point midway between the closest points of the hull edge and the
+// triangle edge (hull frame), unless apart and beside each other (hull_clip.glsl's rule).
+uint np_tri_edge_contact(np_target t, np_body hull, np_hull h, np_triangle tri, uvec2 which,
+                         vec3 n, float margin)
+{
+    uvec2 ends = np_hull_edge_vertices(h, which.x);
+    vec3 a0 = np_hull_vertex(h, ends.x), a1 = np_hull_vertex(h, ends.y);
+    vec3 b0 = np_tri_vertex(tri, which.y), b1 = np_tri_vertex(tri, (which.y + 1u) % 3u);
+    vec3 pa, pb;
+    np_segments_closest(a0, a1 - a0, b0, b1 - b0, pa, pb);
+    vec3 gap = pb - pa;
+    float separation = dot(gap, n);
+    if (separation >= margin || (separation > 0.0 && length(gap - n * separation) > 1.0e-4))
+        return 0u;
+    np_emit(t, 0u, hull.pos + hull.rot * (0.5 * (pa + pb)), separation,
+            0x80000000u | (which.x << 15u) | which.y);
+    return 1u;
+}
+
+// The triangle in the hull's frame. `normal` comes back in world space.
+uint np_hull_triangle(np_target t, np_body hull, np_triangle tri, float margin, out vec3 normal)
+{
+    normal = vec3(0.0);
+    if ((tri.flags & TB_MESH_DEGENERATE) != 0u || dot(tri.normal, tri.v0) > 0.0) return 0u;
+    np_hull h = np_hull_of(hull);
+    float lowest = NP_BIG;
+    for (uint i = 0u; i < h.vertices; i++) lowest = min(lowest, dot(tri.normal, np_hull_vertex(h, i)));
+    float sep_t = lowest - dot(tri.normal, tri.v0);
+    if (sep_t >= margin) return 0u;
+    uint face;
+    float sep_f = np_tri_best_hull_face(h, tri, face);
+    if (sep_f >= margin) return 0u;
+    uvec2 which;
+    vec4 edge = np_tri_best_edges(h, tri, which);
+    if (edge.w >= margin) return 0u;
+    // The triangle's face unless a hull face is clearly better over an active feature of
+    // the triangle, unless an edge pair is clearly better than that.
+    bool hull_ref = np_clearly_better(sep_f, sep_t) &&
+                    np_tri_deepest_active(tri, np_hull_plane(h, face).xyz);
+    if (np_clearly_better(edge.w, hull_ref ? sep_f : sep_t)) {
+        normal = hull.rot * edge.xyz;
+        return np_tri_edge_contact(t, hull, h, tri, which, edge.xyz, margin);
+    }
+    normal = hull.rot * (hull_ref ? np_hull_plane(h, face).xyz : -tri.normal);
+    return np_tri_face_contact(t, hull, h, tri, !hull_ref, face, margin);
+}
+
+#endif
