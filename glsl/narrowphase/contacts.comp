@@ -32,12 +32,11 @@
 #include "pair.glsl"
 
 // Shape types in canonical order: sphere < box < plane < hull < mesh, so each routine knows
-// which shape comes first. A mesh pair's points are the pass narrowphase/mesh_points'. Plane against plane never arrives (planes are static); it gets no
+// which shape comes first. Mesh pairs never come here (mesh_points.comp). Plane against plane never arrives (planes are static); it gets no
 // points. A box meets a hull through its hull data; box against box keeps its own path.
 uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
-    if (second.type == TB_GPU_SHAPE_MESH) return 0u;   // mesh_points.comp's
     bool hull = second.type == TB_GPU_SHAPE_HULL;
     if (first.type == TB_GPU_SHAPE_SPHERE) {
         if (second.type == TB_GPU_SHAPE_SPHERE) return np_sphere_sphere(t, first, second, margin, normal);
@@ -73,5 +72,7 @@ void main()
     // An abandoned step (overflow upstream) leaves last step's results alone.
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
-    np_count_points(p < counters.state.z ? pair_contacts(p) : 0u);
+    // A mesh triangle's pair is mesh_points.comp's, whole.
+    bool mine = p < counters.state.z && pairs[pair_half_base() + p].w == 0u;
+    np_count_points(mine ? pair_contacts(p) : 0u);
 }

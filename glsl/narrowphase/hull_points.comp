@@ -32,6 +32,9 @@ void main()
 {
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
-    bool marked = p < counters.state.z && manifolds[p].axis.z != 0u;
+    // A mesh triangle's pair (pairs[p].w != 0) is never contacts.comp's, so its manifold
+    // may hold a mark of a step abandoned before this pass: not ours.
+    bool marked = p < counters.state.z && manifolds[p].axis.z != 0u &&
+                  pairs[pair_half_base() + p].w == 0u;
     np_count_points(marked ? hull_points(p) : 0u);
 }

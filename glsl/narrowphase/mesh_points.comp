@@ -4,7 +4,7 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // Narrowphase of mesh pairs: the pair of a convex body and one triangle of a mesh body (the
 // broadphase split the body pair by triangle, pairs[p].w = triangle + 1) gets its manifold
-// here (triangle.glsl); contacts.comp left it empty. One thread per pair; other pairs
+// here (triangle.glsl); contacts.comp leaves it alone. One thread per pair; other pairs
 // return at once. Recorded after contacts (and hull_points) while the world has mesh shapes;
 // mesh_reduce then keeps at most four points per body pair. Dispatched indirectly over
 // counters.pair_dispatch.
@@ -23,6 +23,9 @@
 uint mesh_points(uint p)
 {
     np_pair q = np_pair_load(p);
+    // As contacts.comp: the block solver's stiffness of the pair carries over.
+    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
+    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
     vec3 normal = vec3(0.0);
     uint count = 0u;
     np_body shape = q.first, mesh = q.second;   // the mesh comes last in the canonical order

@@ -14,7 +14,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#define HULL_SHAPES 6
+#define HULL_SHAPES HULLS_SHAPES
 #define HULL_MIN_POINTS 8
 #define HULL_MAX_POINTS 32
 #define HULL_RADIUS 0.3f     /* largest semi-axis before jitter, m */
@@ -69,6 +69,18 @@ static tb_result make_hull(tb_world* w, uint32_t k, uint32_t* rng, tb_shape_id* 
     return tb_shape_create_hull(w, &sd, points, count, out);
 }
 
+tb_result hulls_make_shapes(tb_world* w, uint32_t* rng, tb_shape_id shapes[HULLS_SHAPES])
+{
+    tb_result r = TB_OK;
+    for (uint32_t k = 0; k < HULL_SHAPES && r == TB_OK; k++) r = make_hull(w, k, rng, &shapes[k]);
+    return r;
+}
+
+tb_quat hulls_random_rotation(uint32_t* rng)
+{
+    return random_rotation(rng);
+}
+
 tb_result hulls_build(tb_world* w, const scene_params* params, scene_instance** out)
 {
     *out = NULL;
@@ -76,8 +88,7 @@ tb_result hulls_build(tb_world* w, const scene_params* params, scene_instance** 
     pile_layout l = pile_layout_for(n);
     uint32_t rng = scene_rng_seed(params->seed);
     tb_shape_id shapes[HULL_SHAPES];
-    tb_result r = TB_OK;
-    for (uint32_t k = 0; k < HULL_SHAPES && r == TB_OK; k++) r = make_hull(w, k, &rng, &shapes[k]);
+    tb_result r = hulls_make_shapes(w, &rng, shapes);
     scene_instance* inst = r == TB_OK ? instance_alloc(n) : NULL;
     tb_body_def* defs = malloc((n ? n : 1) * sizeof *defs);
     if (r == TB_OK && (!inst || !defs)) r = TB_ERROR_OUT_OF_MEMORY;

@@ -85,7 +85,15 @@ tb_result deep_check(tb_world* world, const scene_instance* inst, uint32_t steps
 tb_result sizes_build(tb_world* world, const scene_params* params, scene_instance** out);
 
 /* hulls.c */
+#define HULLS_SHAPES 6   ///< hull shapes a hull scene makes and its bodies share
 tb_result hulls_build(tb_world* world, const scene_params* params, scene_instance** out);
+/// The hull scene's HULLS_SHAPES random hull shapes, made in `world`.
+tb_result hulls_make_shapes(tb_world* world, uint32_t* rng, tb_shape_id shapes[HULLS_SHAPES]);
+/// A rotation uniform over all rotations.
+tb_quat hulls_random_rotation(uint32_t* rng);
+
+/* terrain.c */
+tb_result terrain_build(tb_world* world, const scene_params* params, scene_instance** out);
 
 /* stacks.c */
 tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);

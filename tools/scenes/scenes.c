@@ -250,6 +250,10 @@ static const scene scenes[] = {
     { "hulls", "N random convex hulls (8-32 vertices) dropped into a walled box; checks "
                "nan, escaped, max_penetration", 1.0f / 60.0f, 4000, 360,
       hulls_build, pile_check, instance_free },
+    { "terrain", "N boxes and hulls (half each) dropped in 4 layers onto a bowl of rolling "
+                 "hills, a static triangle mesh of 131,072 triangles; checks nan, escaped "
+                 "(through or off it), resting, max_penetration", 1.0f / 60.0f, 10000, 600,
+      terrain_build, pile_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))
