@@ -5,6 +5,9 @@
 #include "harness.h"
 
 #include <math.h>
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -173,6 +176,81 @@ static void test_box_slides_over_seams(void** state)
     th_world_destroy(w);
 }
 
+/* ---- hard landings on rolling terrain ------------------------------------------------ */
+
+#define HILLS_HALF 37.0f
+
+static float hills_height(float x, float z)
+{
+    float u = x / HILLS_HALF, v = z / HILLS_HALF;
+    return 0.1f * HILLS_HALF * (u * u + v * v) +
+           0.5f * sinf(2.0f * (float)M_PI * x / 12.0f) * sinf(2.0f * (float)M_PI * z / 12.0f);
+}
+
+/* A bowl of hills over [-37, 37]^2 m in 256 x 256 quads (cells of 0.29 m). */
+static grid_mesh rolling_terrain(void)
+{
+    grid_mesh m = flat_grid(256, 2.0f * HILLS_HALF);
+    for (uint32_t i = 0; i < m.vertex_count; i++)
+        m.vertices[i].y = hills_height(m.vertices[i].x, m.vertices[i].z);
+    return m;
+}
+
+/* A hull of 8 to 20 points on an ellipsoid of semi-axes 0.13 to 0.3 m: slabs, rods, rocks. */
+static tb_shape_id random_hull(tb_world* w, th_rng* rng)
+{
+    tb_vec3 points[20];
+    uint32_t count = 8 + th_rng_u32(rng) % 13;
+    tb_vec3 axes = th_v3(th_rng_range(rng, 0.13f, 0.3f), th_rng_range(rng, 0.13f, 0.3f),
+                         th_rng_range(rng, 0.13f, 0.3f));
+    for (uint32_t i = 0; i < count; i++) {
+        tb_quat q = th_rng_quat(rng);   /* a random direction: a rotated axis */
+        double d[3] = { 1, 0, 0 }, r[3];
+        th_quat_rotate(q, d, r);
+        points[i] = th_v3((float)r[0] * axes.x, (float)r[1] * axes.y, (float)r[2] * axes.z);
+    }
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id shape;
+    th_assert_ok(tb_shape_create_hull(w, &sd, points, count, &shape));
+    return shape;
+}
+
+/* 400 hulls, boxes and spheres dropped from 9 m at random turns onto hills: they land at
+ * up to 13 m/s, faster than a slab is thick per step, and spin on landing; none may end
+ * below the surface (a slab landing on one end used to spin its other end through). */
+static void test_hard_landings_stay_on_terrain(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    grid_mesh m = rolling_terrain();
+    static_mesh(w, &m, 0.6f);
+    th_rng rng = th_rng_seed(11);
+    tb_shape_id shapes[8];
+    for (int k = 0; k < 6; k++) shapes[k] = random_hull(w, &rng);
+    shapes[6] = th_box(w, th_v3(0.2f, 0.1f, 0.3f));
+    shapes[7] = th_sphere(w, 0.15f);
+    enum { N = 400, ACROSS = 20 };
+    tb_body_def defs[N];
+    for (int i = 0; i < N; i++) {
+        float x = -10.0f + 1.3f * (i % ACROSS), z = -8.0f + 1.3f * (i / ACROSS);
+        defs[i] = th_dynamic_def(shapes[i % 8], th_v3(x, hills_height(x, z) + 9.0f, z));
+        defs[i].rotation = th_rng_quat(&rng);
+    }
+    tb_body_id ids[N];
+    th_assert_ok(tb_body_create_many(w, defs, N, ids));
+    static tb_vec3 p[N];
+    for (int s = 0; s < 4; s++) {
+        th_assert_ok(tb_world_step_n(w, DT, 30));
+        th_assert_ok(tb_world_read_transforms(w, ids, N, p, NULL));
+        for (int i = 0; i < N; i++)
+            if (!(p[i].y > hills_height(p[i].x, p[i].z) - 0.05f))
+                fail_msg("body %d (shape %d) at step %d: %.3f m, the surface %.3f m", i, i % 8,
+                         30 * (s + 1), p[i].y, hills_height(p[i].x, p[i].z));
+    }
+    grid_free(&m);
+    th_world_destroy(w);
+}
+
 /* Every broadphase gives the same contacts: a few spheres and boxes on a coarse grid. */
 static void test_broadphases_agree(void** state)
 {
@@ -249,6 +327,7 @@ int main(void)
         cmocka_unit_test(test_sphere_rests_on_fine_grid),
         cmocka_unit_test(test_box_rests_on_fine_grid),
         cmocka_unit_test(test_box_slides_over_seams),
+        cmocka_unit_test(test_hard_landings_stay_on_terrain),
         cmocka_unit_test(test_broadphases_agree),
         cmocka_unit_test(test_bad_meshes_refused),
     };

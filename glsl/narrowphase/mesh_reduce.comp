@@ -7,8 +7,14 @@
 // four points as the narrowphase reduces a clipped polygon (hull.glsl: the deepest, the
 // farthest from it in the plane of the deepest point's normal, the farthest either side of
 // the line through the two), in the run's order, and takes the others out of their
-// manifolds. Each point keeps its own triangle's normal and warm start. Dispatched
-// indirectly over counters.pair_dispatch.
+// manifolds. Each point keeps its own triangle's normal and warm start.
+//
+// Only points the body can reach within the step take part: a gap no wider than the
+// contact margin plus how far the bodies close in along that point's normal (and turn).
+// A body's triangles around it give speculative points of every direction (a triangle
+// beside a hull meets it along one of its side faces), and a pick for spread takes those
+// far ones first; a hull landing on a fine terrain then kept points beside it instead of
+// under it and sank through. Dispatched indirectly over counters.pair_dispatch.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"
@@ -51,18 +57,30 @@ uint keep_points(uint q, uvec4 kept)
     return count - left;
 }
 
+// How far the bodies of the run (pair `pair`) close in along `normal` (a to b) within
+// the step, turning included: a point farther apart than this and the margin stays apart.
+float reach_along(uvec4 pair, vec3 normal)
+{
+    vec3 closing = body_step_motion(pair.x) - body_step_motion(pair.y);
+    float turn_a = body_step_turn(pair.x) * length(shapes[body_info[pair.x].x].aabb_half.xyz);
+    float turn_b = body_step_turn(pair.y) * length(shapes[body_info[pair.y].x].aabb_half.xyz);
+    return params.contact.x + max(dot(closing, normal), 0.0) + turn_a + turn_b;
+}
+
 void reduce_run(uint first, uint end)
 {
+    uvec4 pair = pairs[pair_half_base() + first];
     uvec4 kept = uvec4(NP_NONE);
     vec3 p0 = vec3(0.0), p1 = vec3(0.0), n = vec3(0.0, 1.0, 0.0);
     for (uint pick = 0u; pick < 4u; pick++) {
         float best = -NP_BIG;
         for (uint q = first; q < end; q++) {
             uint count = manifolds[q].info.x;
+            float reach = count != 0u ? reach_along(pair, manifolds[q].normal.xyz) : 0.0;
             for (uint k = 0u; k < count; k++) {
                 uint point = (q << 2u) | k;
                 vec4 x = manifolds[q].point[k];
-                if (any(equal(kept, uvec4(point)))) continue;
+                if (x.w >= reach || any(equal(kept, uvec4(point)))) continue;
                 float score = np_reduce_score(pick, x.xyz, x.w, p0, p1, n);
                 if (score > best) {
                     best = score;

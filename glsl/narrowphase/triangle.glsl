@@ -1,6 +1,8 @@
 // A convex shape against one triangle of a mesh (the shape first in the canonical order, the
 // mesh second; normals point from the shape to the triangle). Triangles are one-sided: a
-// shape whose centre lies behind a triangle's plane gets no contact from it.
+// shape wholly behind a triangle's plane gets no contact from it, and a contact's normal
+// always has the triangle's front on its side, so a shape partly behind (a hard landing
+// can sink its centre below a terrain's surface) is pushed back out to the front.
 //
 // Internal edges: a triangle's inactive edges and vertices (layout.h, TB_MESH_EDGE_ACTIVE_*)
 // lie where the mesh is flat or folds concavely, so a contact there takes the triangle's
@@ -14,11 +16,11 @@
 // crosses of hull edges with the triangle's active edges that build a face of the Minkowski
 // difference (hull_sat.glsl's arc test, the triangle edge's arc running from the face normal
 // to the edge's outward direction: the front quarter of it, one-sided). The triangle's face
-// wins ties (the tolerances of box_box.glsl). Points: the incident hull face clipped by the
-// triangle's sides, or the triangle clipped by the reference hull face's sides, reduced to
-// four (hull.glsl); one point for an edge axis.
-// Feature keys: triangle reference: bit 30 | incident face << 14 | clip feature; hull face
-// reference: face << 22 | clip feature; edges: bit 31 | hull edge << 15 | triangle edge.
+// wins ties (the tolerances of box_box.glsl). Points: the hull's part over the triangle
+// (its lowest corners, np_tri_prism_contact), or the triangle clipped by the reference hull
+// face's sides, reduced to four (hull.glsl); one point for an edge axis.
+// Feature keys: triangle reference: bit 30 | the corner's kind << 26 | its features; hull
+// face reference: face << 22 | clip feature; edges: bit 31 | hull edge << 15 | triangle edge.
 #ifndef TB_NP_TRIANGLE_GLSL
 #define TB_NP_TRIANGLE_GLSL
 
@@ -96,15 +98,17 @@ vec3 np_tri_closest(np_triangle t, vec3 p, out uint feature)
 
 // ---- sphere ---------------------------------------------------------------------------------
 
-// The triangle in world space.
+// The triangle in world space. A centre behind the plane (a hard landing took it there)
+// is pushed back out along the face normal while it lies over the triangle.
 uint np_sphere_triangle(np_target t, np_body s, np_triangle tri, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
     if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
     float height = dot(tri.normal, s.pos - tri.v0);
-    if (height < 0.0 || height >= s.params.x + margin) return 0u;
+    if (height < -s.params.x || height >= s.params.x + margin) return 0u;
     uint feature;
     vec3 q = np_tri_closest(tri, s.pos, feature);
+    if (height < 0.0 && feature != 0u) return 0u;
     vec3 gap = s.pos - q, outward = tri.normal;
     if (feature != 0u && np_tri_feature_active(tri, feature) &&
         dot(gap, gap) > 1.0e-12 * (dot(s.pos, s.pos) + 1.0)) {
@@ -135,31 +139,38 @@ bool np_tri_deepest_active(np_triangle tri, vec3 n)
     return np_tri_vertex_active(tri, k);
 }
 
-// The hull face lying lowest against the triangle: how far the triangle's deepest vertex is
-// above it.
-float np_tri_best_hull_face(np_hull h, np_triangle tri, out uint face)
+// The hull faces lying lowest against the triangle: how far the triangle's deepest vertex
+// is above each. x the best of all faces, y of the faces that face the triangle's front
+// (whose normal, from the hull to the triangle, runs against the triangle's); `face` the
+// latter's.
+vec2 np_tri_best_hull_faces(np_hull h, np_triangle tri, out uint face)
 {
-    float best = -NP_BIG;
+    vec2 best = vec2(-NP_BIG);
     face = 0u;
     for (uint f = 0u; f < h.faces; f++) {
         vec4 plane = np_hull_plane(h, f);
         float s = min(dot(plane.xyz, tri.v0), min(dot(plane.xyz, tri.v1), dot(plane.xyz, tri.v2))) -
                   plane.w;
-        if (s > best) {
-            best = s;
+        best.x = max(best.x, s);
+        if (dot(plane.xyz, tri.normal) < 0.0 && s > best.y) {
+            best.y = s;
             face = f;
         }
     }
     return best;
 }
 
-// The crossing of a hull edge and an active triangle edge that separates most: xyz the unit
-// axis pointing from the hull to the triangle, w the separation; edges in `which` (x hull,
-// y triangle).
-vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which)
+// The crossings of hull edges and the triangle's active edges. A triangle edge's arc on the
+// Gauss map runs from the face normal over its outward direction out_k to the back: the
+// front quarter gives the axes a contact may take (from the triangle to the hull, between
+// its face normal and out_k), the back quarter only separations. Returns the front's best
+// (xyz the unit axis from the hull to the triangle, w the separation; edges in `which`, x
+// hull, y triangle); `any` the best separation of either quarter.
+vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which, out float any)
 {
     vec4 best = vec4(0.0, 0.0, 0.0, -NP_BIG);
     which = uvec2(0u);
+    any = -NP_BIG;
     for (uint k = 0u; k < 3u; k++) {
         if (!np_tri_edge_active(tri, k)) continue;
         vec3 t0 = np_tri_vertex(tri, k), dk = np_tri_vertex(tri, (k + 1u) % 3u) - t0;
@@ -168,8 +179,9 @@ vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which)
             uvec2 faces = np_hull_edge_faces(h, e);
             vec3 u = np_hull_plane(h, faces.x).xyz, v = np_hull_plane(h, faces.y).xyz;
             vec3 ea = cross(u, v);
-            // The triangle edge's arc from its face normal to out_k: cross(normal, out_k) is dk.
-            if (!np_minkowski_face(u, v, ea, tri.normal, out_k, dk)) continue;
+            // Both quarters' circle normals are dk: cross(normal, out_k) and cross(out_k, -normal).
+            bool front = np_minkowski_face(u, v, ea, tri.normal, out_k, dk);
+            if (!front && !np_minkowski_face(u, v, ea, out_k, -tri.normal, dk)) continue;
             vec3 n = cross(ea, dk);
             float n2 = dot(n, n);
             if (n2 < NP_EDGE_PARALLEL * dot(ea, ea) * dot(dk, dk)) continue;
@@ -177,7 +189,8 @@ vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which)
             vec3 pe = np_hull_vertex(h, np_hull_edge_vertices(h, e).x);
             if (dot(n, pe) < 0.0) n = -n;   // away from the hull's centre
             float s = dot(n, t0 - pe);
-            if (s > best.w) {
+            any = max(any, s);
+            if (front && s > best.w) {
                 best = vec4(n, s);
                 which = uvec2(e, k);
             }
@@ -186,37 +199,136 @@ vec4 np_tri_best_edges(np_hull h, np_triangle tri, out uvec2 which)
     return best;
 }
 
-// Side s of the reference: a triangle side (tri_ref) or a side of hull face `ref`.
-vec4 np_tri_ref_side(bool tri_ref, np_triangle tri, np_hull h, uvec2 ref, uint s, vec3 normal)
+// ---- the triangle's face for reference: the hull over its prism -----------------------------
+
+// The hull's part over the triangle (inside the prism its sides cut along its normal) is a
+// convex polytope; its lowest points are among its corners: the hull's vertices inside the
+// prism, the crossings of the hull's edges with the prism's sides, and where the prism's
+// edges (the lines through the triangle's corners along its normal) enter the hull. Those
+// are this contact's candidates, all of them, not one incident face's clipped polygon:
+// a hull over several triangles has its incident face over another one, and one turning
+// within the step brings down corners no face near the deepest vertex holds (a slab that
+// landed on one end on a slope spun its other end down through the terrain).
+// Feature keys: bit 30 | the candidate's kind << 26 | hull vertex v, hull edge e << 2 |
+// side s, or triangle corner k.
+#define NP_TRI_CANDIDATE_VERTEX 1u
+#define NP_TRI_CANDIDATE_CROSSING 2u
+#define NP_TRI_CANDIDATE_CORNER 3u
+
+// Side s of the triangle: xyz its outward unit normal (in the plane), w its offset.
+vec4 np_tri_side(np_triangle tri, uint s)
 {
-    if (!tri_ref) return np_clip_side(h, ref, s, normal);
-    vec3 t0 = np_tri_vertex(tri, s), side = cross(np_tri_vertex(tri, (s + 1u) % 3u) - t0, normal);
-    side = normalize(side);
+    vec3 t0 = np_tri_vertex(tri, s);
+    vec3 side = normalize(cross(np_tri_vertex(tri, (s + 1u) % 3u) - t0, tri.normal));
     return vec4(side, dot(side, t0));
 }
 
-// Face contact, in the hull's frame: the reference is the triangle (tri_ref, normal the
-// triangle's) or hull face `face` (normal its plane's); the incident polygon is the hull's
-// face most anti-parallel to the normal, or the triangle. Returns the point count.
-uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, bool tri_ref,
-                         uint face, float margin)
+bool np_tri_in_prism(vec4 s0, vec4 s1, vec4 s2, vec3 x, float tol)
 {
-    vec4 plane = tri_ref ? vec4(tri.normal, dot(tri.normal, tri.v0)) : np_hull_plane(h, face);
-    uvec2 ref = tri_ref ? uvec2(0u, 3u) : np_hull_face(h, face);
-    uint inc = tri_ref ? np_incident_face(h, plane.xyz) : 0u;
-    uint key = tri_ref ? (1u << 30u) | (inc << 14u) : face << 22u;
-    vec4 poly[2u * NP_CLIP_MAX];
-    uvec2 incident = tri_ref ? np_hull_face(h, inc) : uvec2(0u, 3u);
-    uint n = incident.y;
-    for (uint k = 0u; k < n; k++) {
-        vec3 x = tri_ref ? np_hull_face_vertex(h, incident, k) : np_tri_vertex(tri, k);
-        poly[k] = np_clip_corner(x, np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
+    return dot(s0.xyz, x) - s0.w <= tol && dot(s1.xyz, x) - s1.w <= tol &&
+           dot(s2.xyz, x) - s2.w <= tol;
+}
+
+// Candidate c (hull vertices, then edge-side crossings, then triangle corners): xyz the
+// point on the hull, w its feature key's low bits as a float (exact below 2^24), or -1
+// when c is no corner of the part over the triangle.
+vec4 np_tri_candidate(np_hull h, np_triangle tri, vec4 s0, vec4 s1, vec4 s2, uint c, float tol)
+{
+    if (c < h.vertices) {
+        vec3 x = np_hull_vertex(h, c);
+        bool inside = np_tri_in_prism(s0, s1, s2, x, tol);
+        return vec4(x, inside ? float((NP_TRI_CANDIDATE_VERTEX << 26u) | c) : -1.0);
     }
+    c -= h.vertices;
+    if (c < 3u * h.edges) {
+        uint e = c / 3u, s = c % 3u;
+        vec4 side = s == 0u ? s0 : (s == 1u ? s1 : s2);
+        uvec2 ends = np_hull_edge_vertices(h, e);
+        vec3 p = np_hull_vertex(h, ends.x), q = np_hull_vertex(h, ends.y);
+        float dp = dot(side.xyz, p) - side.w, dq = dot(side.xyz, q) - side.w;
+        if ((dp > 0.0) == (dq > 0.0)) return vec4(p, -1.0);
+        vec3 x = mix(p, q, dp / (dp - dq));
+        bool inside = np_tri_in_prism(s0, s1, s2, x, tol);
+        return vec4(x, inside ? float((NP_TRI_CANDIDATE_CROSSING << 26u) | (e << 2u) | s) : -1.0);
+    }
+    uint k = c - 3u * h.edges;
+    vec3 t = np_tri_vertex(tri, k), n = tri.normal;
+    // The line t + r n lies inside every face plane for r in [enter, leave].
+    float enter = -NP_BIG, leave = NP_BIG;
+    for (uint f = 0u; f < h.faces; f++) {
+        vec4 plane = np_hull_plane(h, f);
+        float along = dot(plane.xyz, n), gap = plane.w - dot(plane.xyz, t);
+        if (along < 0.0) enter = max(enter, gap / along);
+        else if (along > 0.0) leave = min(leave, gap / along);
+        else if (gap < 0.0) enter = NP_BIG;
+    }
+    return vec4(t + n * enter, enter <= leave ? float((NP_TRI_CANDIDATE_CORNER << 26u) | k) : -1.0);
+}
+
+// The contact with the triangle's face for reference, in the hull's frame: the candidates
+// within the margin of the triangle's plane, more than four reduced (hull.glsl).
+uint np_tri_prism_contact(np_target t, np_body hull, np_hull h, np_triangle tri, float margin)
+{
+    vec4 s0 = np_tri_side(tri, 0u), s1 = np_tri_side(tri, 1u), s2 = np_tri_side(tri, 2u);
+    vec3 n = tri.normal;
+    float w = dot(n, tri.v0);
+    float tol = 1.0e-5 * (length(tri.v0) + length(np_hull_vertex(h, 0u))) + 1.0e-6;
+    uint candidates = h.vertices + 3u * h.edges + 3u, near = 0u;
+    for (uint c = 0u; c < candidates; c++) {
+        vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
+        if (x.w >= 0.0 && dot(n, x.xyz) - w < margin) near++;
+    }
+    uvec4 kept = uvec4(NP_NONE);
+    if (near > 4u) {
+        vec3 p0 = vec3(0.0), p1 = vec3(0.0);
+        for (uint pick = 0u; pick < 4u; pick++) {
+            float best = -NP_BIG;
+            for (uint c = 0u; c < candidates; c++) {
+                vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
+                float height = dot(n, x.xyz) - w;
+                if (x.w < 0.0 || height >= margin || any(equal(kept, uvec4(c)))) continue;
+                float score = np_reduce_score(pick, x.xyz, height, p0, p1, n);
+                if (score > best) {
+                    best = score;
+                    kept[pick] = c;
+                    if (pick == 0u) p0 = x.xyz;
+                    if (pick == 1u) p1 = x.xyz;
+                }
+            }
+        }
+    }
+    uint count = 0u;
+    for (uint c = 0u; c < candidates && count < uint(TB_MAX_MANIFOLD_POINTS); c++) {
+        vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
+        float height = dot(n, x.xyz) - w;
+        if (x.w < 0.0 || height >= margin || (near > 4u && !any(equal(kept, uvec4(c))))) continue;
+        vec3 mid = x.xyz - n * (0.5 * height);   // midway between the surfaces
+        np_emit(t, count, hull.pos + hull.rot * mid, height, (1u << 30u) | uint(x.w));
+        count++;
+    }
+    return count;
+}
+
+// ---- a hull face for reference: the triangle clipped by its sides ---------------------------
+
+// Hull face `face` for reference (hull frame): the triangle clipped by the face's sides,
+// its corners within the margin of the face's plane, more than four reduced. Feature keys:
+// face << 22 | clip feature (hull_clip.glsl).
+uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, uint face,
+                         float margin)
+{
+    vec4 plane = np_hull_plane(h, face);
+    uvec2 ref = np_hull_face(h, face);
+    uint key = face << 22u;
+    vec4 poly[2u * NP_CLIP_MAX];
+    uint n = 3u;
+    for (uint k = 0u; k < n; k++)
+        poly[k] = np_clip_corner(np_tri_vertex(tri, k), np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
     float tol = 1.0e-5 * (length(tri.v0) + length(np_hull_vertex(h, 0u))) +
                 1.0e-6 * (length(hull.pos) + 1.0);
     uint from = 0u, to = NP_CLIP_MAX;
     for (uint s = 0u; s < ref.y && n > 0u; s++) {
-        vec4 side = np_tri_ref_side(tri_ref, tri, h, ref, s, plane.xyz);
+        vec4 side = np_clip_side(h, ref, s, plane.xyz);
         if (side.xyz == vec3(0.0)) continue;
         uint m = 0u;
         vec4 p = poly[from + n - 1u];
@@ -234,8 +346,7 @@ uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, 
         from = to;
         to = NP_CLIP_MAX - to;
     }
-    // Heights above the reference plane (a hull corner above the triangle, or a triangle
-    // corner outside the hull face): negative is overlap.
+    // Heights of the triangle's corners outside the hull face: negative is overlap.
     uint near = 0u;
     for (uint k = 0u; k < n; k++)
         if (dot(plane.xyz, poly[from + k].xyz) - plane.w < margin) near++;
@@ -263,7 +374,7 @@ uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, 
         vec4 c = poly[from + k];
         float height = dot(plane.xyz, c.xyz) - plane.w;
         if (height >= margin || (near > 4u && !any(equal(kept, uvec4(k))))) continue;
-        vec3 x = tri_ref ? c.xyz : np_clip_onto_face(h, ref, plane.xyz, c.xyz);
+        vec3 x = np_clip_onto_face(h, ref, plane.xyz, c.xyz);
         vec3 mid = x - plane.xyz * (0.5 * height);   // midway between the surfaces
         np_emit(t, count, hull.pos + hull.rot * mid, height, key | (uint(c.w) & 0xfffu));
         count++;
@@ -290,32 +401,57 @@ uint np_tri_edge_contact(np_target t, np_body hull, np_hull h, np_triangle tri, 
     return 1u;
 }
 
-// The triangle in the hull's frame. `normal` comes back in world space.
+// The triangle in the hull's frame. `normal` comes back in world space. Every axis decides
+// whether the two are apart; only the front's (the triangle's normal, hull faces facing it,
+// edge crossings of the front quarter) may be the contact's, so a triangle that cuts a
+// hull near its top never pushes it down through the mesh, and a hull that sank partly
+// behind it is pushed back out to the front.
 uint np_hull_triangle(np_target t, np_body hull, np_triangle tri, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
-    if ((tri.flags & TB_MESH_DEGENERATE) != 0u || dot(tri.normal, tri.v0) > 0.0) return 0u;
+    if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
     np_hull h = np_hull_of(hull);
-    float lowest = NP_BIG;
-    for (uint i = 0u; i < h.vertices; i++) lowest = min(lowest, dot(tri.normal, np_hull_vertex(h, i)));
+    float lowest = NP_BIG, highest = -NP_BIG;
+    for (uint i = 0u; i < h.vertices; i++) {
+        float along = dot(tri.normal, np_hull_vertex(h, i));
+        lowest = min(lowest, along);
+        highest = max(highest, along);
+    }
     float sep_t = lowest - dot(tri.normal, tri.v0);
-    if (sep_t >= margin) return 0u;
+    // Wholly behind the triangle: no contact (one-sided). Partly behind, it is pushed out
+    // to the front: a hull whose centre a hard landing took below a terrain's surface
+    // must still come back up rather than fall through.
+    if (sep_t >= margin || highest < dot(tri.normal, tri.v0)) return 0u;
     uint face;
-    float sep_f = np_tri_best_hull_face(h, tri, face);
-    if (sep_f >= margin) return 0u;
+    vec2 sep_f = np_tri_best_hull_faces(h, tri, face);
+    if (sep_f.x >= margin) return 0u;
     uvec2 which;
-    vec4 edge = np_tri_best_edges(h, tri, which);
-    if (edge.w >= margin) return 0u;
+    float sep_any_edge;
+    vec4 edge = np_tri_best_edges(h, tri, which, sep_any_edge);
+    float apart = max(sep_t, max(sep_f.x, sep_any_edge));
+    if (apart >= margin) return 0u;
+    float front = max(sep_t, max(sep_f.y, edge.w));
+    // Apart beside the triangle, overlapping along every front axis: its neighbours' job.
+    if (apart > 0.0 && front < 0.0) return 0u;
     // The triangle's face unless a hull face is clearly better over an active feature of
     // the triangle, unless an edge pair is clearly better than that.
-    bool hull_ref = np_clearly_better(sep_f, sep_t) &&
+    bool hull_ref = np_clearly_better(sep_f.y, sep_t) &&
                     np_tri_deepest_active(tri, np_hull_plane(h, face).xyz);
-    if (np_clearly_better(edge.w, hull_ref ? sep_f : sep_t)) {
+    uint count = 0u;
+    if (np_clearly_better(edge.w, hull_ref ? sep_f.y : sep_t)) {
         normal = hull.rot * edge.xyz;
-        return np_tri_edge_contact(t, hull, h, tri, which, edge.xyz, margin);
+        count = np_tri_edge_contact(t, hull, h, tri, which, edge.xyz, margin);
+    } else if (hull_ref) {
+        normal = hull.rot * np_hull_plane(h, face).xyz;
+        count = np_tri_face_contact(t, hull, h, tri, face, margin);
     }
-    normal = hull.rot * (hull_ref ? np_hull_plane(h, face).xyz : -tri.normal);
-    return np_tri_face_contact(t, hull, h, tri, !hull_ref, face, margin);
+    // The triangle's face, chosen, or when the chosen axis's features do not face each
+    // other over the triangle (a hull face whose sides leave the triangle out).
+    if (count == 0u && sep_t < margin) {
+        normal = hull.rot * -tri.normal;
+        count = np_tri_prism_contact(t, hull, h, tri, margin);
+    }
+    return count;
 }
 
 #endif
