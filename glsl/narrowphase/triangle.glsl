@@ -229,29 +229,11 @@ bool np_tri_in_prism(vec4 s0, vec4 s1, vec4 s2, vec3 x, float tol)
            dot(s2.xyz, x) - s2.w <= tol;
 }
 
-// Candidate c (hull vertices, then edge-side crossings, then triangle corners): xyz the
-// point on the hull, w its feature key's low bits as a float (exact below 2^24), or -1
-// when c is no corner of the part over the triangle.
-vec4 np_tri_candidate(np_hull h, np_triangle tri, vec4 s0, vec4 s1, vec4 s2, uint c, float tol)
+// Where the line through triangle corner k along the normal enters the hull: xyz the
+// point, w its feature key's low bits (float bits: a normal float, kinds 1 to 3 being
+// nonzero), or -1 when the line misses the hull.
+vec4 np_tri_corner_entry(np_hull h, np_triangle tri, uint k)
 {
-    if (c < h.vertices) {
-        vec3 x = np_hull_vertex(h, c);
-        bool inside = np_tri_in_prism(s0, s1, s2, x, tol);
-        return vec4(x, inside ? float((NP_TRI_CANDIDATE_VERTEX << 26u) | c) : -1.0);
-    }
-    c -= h.vertices;
-    if (c < 3u * h.edges) {
-        uint e = c / 3u, s = c % 3u;
-        vec4 side = s == 0u ? s0 : (s == 1u ? s1 : s2);
-        uvec2 ends = np_hull_edge_vertices(h, e);
-        vec3 p = np_hull_vertex(h, ends.x), q = np_hull_vertex(h, ends.y);
-        float dp = dot(side.xyz, p) - side.w, dq = dot(side.xyz, q) - side.w;
-        if ((dp > 0.0) == (dq > 0.0)) return vec4(p, -1.0);
-        vec3 x = mix(p, q, dp / (dp - dq));
-        bool inside = np_tri_in_prism(s0, s1, s2, x, tol);
-        return vec4(x, inside ? float((NP_TRI_CANDIDATE_CROSSING << 26u) | (e << 2u) | s) : -1.0);
-    }
-    uint k = c - 3u * h.edges;
     vec3 t = np_tri_vertex(tri, k), n = tri.normal;
     // The line t + r n lies inside every face plane for r in [enter, leave].
     float enter = -NP_BIG, leave = NP_BIG;
@@ -262,8 +244,12 @@ vec4 np_tri_candidate(np_hull h, np_triangle tri, vec4 s0, vec4 s1, vec4 s2, uin
         else if (along > 0.0) leave = min(leave, gap / along);
         else if (gap < 0.0) enter = NP_BIG;
     }
-    return vec4(t + n * enter, enter <= leave ? float((NP_TRI_CANDIDATE_CORNER << 26u) | k) : -1.0);
+    return vec4(t + n * enter, enter <= leave ? uintBitsToFloat((NP_TRI_CANDIDATE_CORNER << 26u) | k) : -1.0);
 }
+
+// Candidates within the margin, gathered once: at most NP_TRI_FOUND, the lowest kept when
+// more come (a hull's part over a triangle has few corners that low).
+#define NP_TRI_FOUND 24u
 
 // The contact with the triangle's face for reference, in the hull's frame: the candidates
 // within the margin of the triangle's plane, more than four reduced (hull.glsl).
@@ -273,40 +259,66 @@ uint np_tri_prism_contact(np_target t, np_body hull, np_hull h, np_triangle tri,
     vec3 n = tri.normal;
     float w = dot(n, tri.v0);
     float tol = 1.0e-5 * (length(tri.v0) + length(np_hull_vertex(h, 0u))) + 1.0e-6;
-    uint candidates = h.vertices + 3u * h.edges + 3u, near = 0u;
-    for (uint c = 0u; c < candidates; c++) {
-        vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
-        if (x.w >= 0.0 && dot(n, x.xyz) - w < margin) near++;
+    vec4 found[NP_TRI_FOUND];
+    uint count = 0u;
+    // Every candidate goes through here: kept while there is room, else in place of the
+    // highest kept if lower.
+    #define NP_TRI_OFFER(point, key) { \
+        vec4 offered = vec4(point, uintBitsToFloat(key)); \
+        if (count < NP_TRI_FOUND) { found[count++] = offered; } else { \
+            uint top = 0u; \
+            for (uint j = 1u; j < NP_TRI_FOUND; j++) \
+                if (dot(n, found[j].xyz) > dot(n, found[top].xyz)) top = j; \
+            if (dot(n, offered.xyz) < dot(n, found[top].xyz)) found[top] = offered; } }
+    for (uint v = 0u; v < h.vertices; v++) {
+        vec3 x = np_hull_vertex(h, v);
+        if (dot(n, x) - w < margin && np_tri_in_prism(s0, s1, s2, x, tol))
+            NP_TRI_OFFER(x, (NP_TRI_CANDIDATE_VERTEX << 26u) | v)
     }
+    for (uint e = 0u; e < h.edges; e++) {
+        uvec2 ends = np_hull_edge_vertices(h, e);
+        vec3 p = np_hull_vertex(h, ends.x), q = np_hull_vertex(h, ends.y);
+        if (min(dot(n, p), dot(n, q)) - w >= margin) continue;
+        for (uint s = 0u; s < 3u; s++) {
+            vec4 side = s == 0u ? s0 : (s == 1u ? s1 : s2);
+            float dp = dot(side.xyz, p) - side.w, dq = dot(side.xyz, q) - side.w;
+            if ((dp > 0.0) == (dq > 0.0)) continue;
+            vec3 x = mix(p, q, dp / (dp - dq));
+            if (dot(n, x) - w < margin && np_tri_in_prism(s0, s1, s2, x, tol))
+                NP_TRI_OFFER(x, (NP_TRI_CANDIDATE_CROSSING << 26u) | (e << 2u) | s)
+        }
+    }
+    for (uint k = 0u; k < 3u; k++) {
+        vec4 x = np_tri_corner_entry(h, tri, k);
+        if (x.w >= 0.0 && dot(n, x.xyz) - w < margin) NP_TRI_OFFER(x.xyz, floatBitsToUint(x.w))
+    }
+    #undef NP_TRI_OFFER
     uvec4 kept = uvec4(NP_NONE);
-    if (near > 4u) {
+    if (count > 4u) {
         vec3 p0 = vec3(0.0), p1 = vec3(0.0);
         for (uint pick = 0u; pick < 4u; pick++) {
             float best = -NP_BIG;
-            for (uint c = 0u; c < candidates; c++) {
-                vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
-                float height = dot(n, x.xyz) - w;
-                if (x.w < 0.0 || height >= margin || any(equal(kept, uvec4(c)))) continue;
-                float score = np_reduce_score(pick, x.xyz, height, p0, p1, n);
+            for (uint c = 0u; c < count; c++) {
+                if (any(equal(kept, uvec4(c)))) continue;
+                float score = np_reduce_score(pick, found[c].xyz, dot(n, found[c].xyz) - w, p0, p1, n);
                 if (score > best) {
                     best = score;
                     kept[pick] = c;
-                    if (pick == 0u) p0 = x.xyz;
-                    if (pick == 1u) p1 = x.xyz;
                 }
             }
+            if (pick == 0u) p0 = found[kept[0]].xyz;
+            if (pick == 1u) p1 = found[kept[1]].xyz;
         }
     }
-    uint count = 0u;
-    for (uint c = 0u; c < candidates && count < uint(TB_MAX_MANIFOLD_POINTS); c++) {
-        vec4 x = np_tri_candidate(h, tri, s0, s1, s2, c, tol);
-        float height = dot(n, x.xyz) - w;
-        if (x.w < 0.0 || height >= margin || (near > 4u && !any(equal(kept, uvec4(c))))) continue;
-        vec3 mid = x.xyz - n * (0.5 * height);   // midway between the surfaces
-        np_emit(t, count, hull.pos + hull.rot * mid, height, (1u << 30u) | uint(x.w));
-        count++;
+    uint emitted = 0u;
+    for (uint c = 0u; c < count; c++) {
+        if (count > 4u && !any(equal(kept, uvec4(c)))) continue;
+        float height = dot(n, found[c].xyz) - w;
+        vec3 mid = found[c].xyz - n * (0.5 * height);   // midway between the surfaces
+        np_emit(t, emitted, hull.pos + hull.rot * mid, height, (1u << 30u) | floatBitsToUint(found[c].w));
+        emitted++;
     }
-    return count;
+    return emitted;
 }
 
 // ---- a hull face for reference: the triangle clipped by its sides ---------------------------
