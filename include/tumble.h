@@ -367,6 +367,13 @@ typedef struct tb_mesh_info {
 
 TB_API tb_result tb_shape_get_mesh_info(const tb_world* world, tb_shape_id shape,
                                         tb_mesh_info* out);
+/// A mesh's geometry as it was given: writes at most `vertex_capacity` vertices and
+/// `triangle_capacity` triangles (three indices each) to the arrays (either may be NULL with
+/// capacity 0), and the full counts to *vertex_count and *triangle_count.
+TB_API tb_result tb_shape_get_mesh_geometry(const tb_world* world, tb_shape_id shape,
+                                            tb_vec3* vertices, uint32_t vertex_capacity,
+                                            uint32_t* indices, uint32_t triangle_capacity,
+                                            uint32_t* vertex_count, uint32_t* triangle_count);
 
 /// What a hull became.
 typedef struct tb_hull_info {

@@ -310,6 +310,15 @@ static void test_bad_meshes_refused(void** state)
     th_assert_ok(tb_shape_get_mesh_info(w, shape, &info));
     assert_int_equal(info.triangle_count, 2);
     assert_int_equal(info.active_edge_count, 4);   /* the square's border; the diagonal is flat */
+    tb_vec3 back[4];
+    uint32_t back_indices[6], nv = 0, nt = 0;
+    th_assert_ok(tb_shape_get_mesh_geometry(w, shape, back, 4, back_indices, 2, &nv, &nt));
+    assert_int_equal(nv, 4);
+    assert_int_equal(nt, 2);
+    assert_memory_equal(back, v, sizeof v);
+    assert_memory_equal(back_indices, good, sizeof good);
+    th_assert_result(tb_shape_get_mesh_geometry(w, shape, NULL, 4, NULL, 0, &nv, &nt),
+                     TB_ERROR_INVALID_ARGUMENT);
     tb_body_def d = th_dynamic_def(shape, th_v3(0, 1, 0));
     tb_body_id body;
     th_assert_result(tb_body_create_many(w, &d, 1, &body), TB_ERROR_INVALID_ARGUMENT);

@@ -262,18 +262,27 @@ tb_result tb_shape_get_hull_vertices(const tb_world* cw, tb_shape_id id, tb_vec3
     return TB_OK;
 }
 
+/* A mesh shape's record, or an error naming what the id is instead. */
+static const tb_mesh* mesh_of(tb_world* w, tb_shape_id id, tb_result* r)
+{
+    uint32_t slot;
+    tb_shape_record* s = tb_shape_lookup(w, id, &slot, r);
+    if (!s) return NULL;
+    if (s->type != TB_SHAPE_MESH) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a mesh",
+                     id.index1, id.world, id.generation);
+        return NULL;
+    }
+    return s->mesh;
+}
+
 tb_result tb_shape_get_mesh_info(const tb_world* cw, tb_shape_id id, tb_mesh_info* out)
 {
     tb_world* w = (tb_world*)cw;
-    uint32_t slot;
     tb_result r;
-    tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
-    if (!s) return r;
-    if (s->type != TB_SHAPE_MESH)
-        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a mesh",
-                       id.index1, id.world, id.generation);
+    const tb_mesh* m = mesh_of(w, id, &r);
+    if (!m) return r;
     if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
-    const tb_mesh* m = s->mesh;
     uint32_t active = 0;
     for (uint32_t t = 0; t < m->triangle_count; t++)
         for (uint32_t k = 0; k < 3; k++) active += (m->flags[t] >> k) & 1u;
@@ -283,5 +292,27 @@ tb_result tb_shape_get_mesh_info(const tb_world* cw, tb_shape_id id, tb_mesh_inf
         .aabb_min = { m->bvh.lo[0], m->bvh.lo[1], m->bvh.lo[2] },
         .aabb_max = { m->bvh.hi[0], m->bvh.hi[1], m->bvh.hi[2] },
     };
+    return TB_OK;
+}
+
+tb_result tb_shape_get_mesh_geometry(const tb_world* cw, tb_shape_id id, tb_vec3* vertices,
+                                     uint32_t vertex_capacity, uint32_t* indices,
+                                     uint32_t triangle_capacity, uint32_t* vertex_count,
+                                     uint32_t* triangle_count)
+{
+    tb_world* w = (tb_world*)cw;
+    tb_result r;
+    const tb_mesh* m = mesh_of(w, id, &r);
+    if (!m) return r;
+    if (!vertex_count || !triangle_count || (!vertices && vertex_capacity) ||
+        (!indices && triangle_capacity))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "a count is NULL, or an array is "
+                       "NULL with a capacity");
+    for (uint32_t i = 0; i < m->vertex_count && i < vertex_capacity; i++)
+        vertices[i] = (tb_vec3){ m->xyz[3 * i], m->xyz[3 * i + 1], m->xyz[3 * i + 2] };
+    for (uint32_t t = 0; t < m->triangle_count && t < triangle_capacity; t++)
+        for (uint32_t k = 0; k < 3; k++) indices[3 * t + k] = m->indices[3 * t + k];
+    *vertex_count = m->vertex_count;
+    *triangle_count = m->triangle_count;
     return TB_OK;
 }
