@@ -299,6 +299,7 @@ typedef enum tb_shape_type {
     TB_SHAPE_PLANE = 2,
     TB_SHAPE_HULL = 3,
     TB_SHAPE_MESH = 4,
+    TB_SHAPE_HEIGHTFIELD = 5,
     TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
 } tb_shape_type;
 
@@ -356,6 +357,21 @@ TB_API tb_result tb_shape_create_mesh(tb_world* world, const tb_shape_def* def,
                                       const tb_vec3* vertices, uint32_t vertex_count,
                                       const uint32_t* indices, uint32_t triangle_count,
                                       tb_shape_id* out);
+
+/// Heightfield: a grid of count_x x count_z heights (y, m), row by row along x: sample
+/// (i, k) is heights[k * count_x + i], at x = (i - (count_x - 1) / 2) * cell_x and
+/// z = (k - (count_z - 1) / 2) * cell_z in the body frame (the grid is centred on the
+/// body's origin). Each cell is two triangles facing +y, colliding from above only (as a
+/// mesh's: one-sided, active edges on creases and borders, none inside flat or concave
+/// ground). `holes` may be NULL, or hold (count_x - 1) * (count_z - 1) bytes, row by row
+/// along x: a nonzero byte makes that cell a hole. For static bodies only. Fails with
+/// TB_ERROR_INVALID_ARGUMENT on NULL heights, fewer than 2 or more than 32,768 samples
+/// along a side, a cell size not finite and > 0, a grid wider than 2e6 m, a height not
+/// finite or beyond 1e6 m, or every cell a hole.
+TB_API tb_result tb_shape_create_heightfield(tb_world* world, const tb_shape_def* def,
+                                             const float* heights, uint32_t count_x,
+                                             uint32_t count_z, float cell_x, float cell_z,
+                                             const uint8_t* holes, tb_shape_id* out);
 
 /// What a mesh became.
 typedef struct tb_mesh_info {

@@ -1,7 +1,8 @@
-/* Triangle meshes in the step (GPU, lavapipe): spheres, boxes and hulls resting on a quad of
- * two triangles and on a fine flat grid without drift, a box sliding across the grid's
- * seams without hopping, every broadphase splitting the same body pairs into the same
- * triangle pairs, and meshes refused where they cannot go. */
+/* Triangle meshes and heightfields in the step (GPU, lavapipe): spheres, boxes and hulls
+ * resting on a quad of two triangles and on a fine flat grid without drift, a box sliding
+ * across the grid's seams without hopping, hard landings on hills, a sphere rolling down a
+ * heightfield as down an inclined plane, holes, every broadphase splitting the same body
+ * pairs into the same triangle pairs, and bad meshes and heightfields refused. */
 #include "harness.h"
 
 #include <math.h>
@@ -251,6 +252,128 @@ static void test_hard_landings_stay_on_terrain(void** state)
     th_world_destroy(w);
 }
 
+/* ---- heightfields ------------------------------------------------------------------------ */
+
+static tb_body_id static_heightfield(tb_world* w, const float* heights, uint32_t nx, uint32_t nz,
+                                     float cell, const uint8_t* holes, tb_quat rotation)
+{
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id shape;
+    th_assert_ok(tb_shape_create_heightfield(w, &sd, heights, nx, nz, cell, cell, holes, &shape));
+    tb_body_def d = th_static_def(shape, th_v3(0, 0, 0));
+    d.rotation = rotation;
+    return th_body(w, &d);
+}
+
+/* How far a sphere of radius 0.5 placed on the ground 2 m up the slope of a 20 degree
+ * incline rolls in 90 steps: on a heightfield whose heights make the slope (ramp != 0), or
+ * on a plane turned by the same angle. */
+static double roll_distance(int ramp)
+{
+    const double angle = 20.0 * M_PI / 180.0;
+    tb_world* w = th_world_create(NULL);
+    enum { NX = 41, NZ = 9 };
+    const float cell = 0.5f;
+    tb_vec3 down = th_v3((float)cos(angle), (float)-sin(angle), 0);   /* along the slope */
+    tb_vec3 up = th_v3((float)sin(angle), (float)cos(angle), 0);      /* its normal */
+    if (ramp) {
+        static float heights[NX * NZ];
+        for (int k = 0; k < NZ; k++)
+            for (int i = 0; i < NX; i++)
+                heights[k * NX + i] = -(float)tan(angle) * cell * (float)(i - (NX - 1) / 2);
+        static_heightfield(w, heights, NX, NZ, cell, NULL, th_q(0, 0, 0, 1));
+    } else {
+        tb_shape_def sd = tb_default_shape_def();
+        tb_shape_id plane;
+        th_assert_ok(tb_shape_create_plane(w, &sd, up, 0.0f, &plane));
+        tb_body_def d = th_static_def(plane, th_v3(0, 0, 0));
+        th_body(w, &d);
+    }
+    /* 4 m up the slope from the middle, resting on it. */
+    tb_vec3 start = th_v3(-4.0f * down.x + 0.5f * up.x, -4.0f * down.y + 0.5f * up.y, 0);
+    tb_body_def d = th_dynamic_def(th_sphere(w, 0.5f), start);
+    tb_body_id ball = th_body(w, &d);
+    th_assert_ok(tb_world_step_n(w, DT, 90));
+    tb_vec3 p;
+    th_read_pose(w, ball, &p, NULL);
+    th_world_destroy(w);
+    return (p.x - start.x) * down.x + (p.y - start.y) * down.y;
+}
+
+/* Rolling without slipping, a sphere runs down at 5/7 g sin(angle) on both. */
+static void test_sphere_rolls_down_heightfield_as_on_plane(void** state)
+{
+    (void)state;
+    double on_field = roll_distance(1), on_plane = roll_distance(0);
+    double t = 90 * (double)DT, analytic = 0.5 * 5.0 / 7.0 * 9.81 * sin(20.0 * M_PI / 180.0) * t * t;
+    print_message("rolled %.4f m on the heightfield, %.4f m on the plane, %.4f m analytic\n",
+                  on_field, on_plane, analytic);
+    th_assert_near(on_plane, analytic, 0, 0.03);
+    th_assert_near(on_field, on_plane, 0, 0.02);
+}
+
+/* A box rests on a flat heightfield; a sphere over a hole falls through it while one beside
+ * it stays. */
+static void test_heightfield_rest_and_holes(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    enum { N = 17 };
+    static float heights[N * N];
+    static uint8_t holes[(N - 1) * (N - 1)];
+    memset(heights, 0, sizeof heights);
+    memset(holes, 0, sizeof holes);
+    holes[8 * (N - 1) + 8] = 1;   /* the cell just past the centre, x and z in [0, 1] */
+    static_heightfield(w, heights, N, N, 1.0f, holes, th_q(0, 0, 0, 1));
+    tb_body_def d = th_dynamic_def(th_sphere(w, 0.3f), th_v3(0.5f, 0.3f, 0.5f));
+    tb_body_id over_hole = th_body(w, &d);
+    d = th_dynamic_def(th_sphere(w, 0.3f), th_v3(-3.5f, 0.3f, 0.5f));
+    tb_body_id beside = th_body(w, &d);
+    d = th_dynamic_def(th_box(w, th_v3(0.4f, 0.4f, 0.4f)), th_v3(3.3f, 0.4f, -2.6f));
+    tb_body_id box = th_body(w, &d);
+    th_assert_ok(tb_world_step_n(w, DT, 120));
+    tb_vec3 p;
+    th_read_pose(w, over_hole, &p, NULL);
+    assert_true(p.y < -1.0f);
+    th_read_pose(w, beside, &p, NULL);
+    assert_true(distance(p, th_v3(-3.5f, 0.3f, 0.5f)) < 1e-3);
+    th_read_pose(w, box, &p, NULL);
+    assert_true(distance(p, th_v3(3.3f, 0.4f, -2.6f)) < 1e-3);
+    th_world_destroy(w);
+}
+
+static void test_bad_heightfields_refused(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create_ex(NULL, 1);
+    tb_shape_def sd = tb_default_shape_def();
+    float h[9] = { 0 };
+    uint8_t all_holes[4] = { 1, 1, 1, 1 };
+    tb_shape_id shape, ids[4];
+    uint32_t before = tb_world_shape_ids(w, ids, 4);
+    th_assert_result(tb_shape_create_heightfield(w, &sd, NULL, 3, 3, 1, 1, NULL, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_heightfield(w, &sd, h, 1, 9, 1, 1, NULL, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_heightfield(w, &sd, h, 3, 3, 0, 1, NULL, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_heightfield(w, &sd, h, 3, 3, 1, NAN, NULL, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_heightfield(w, &sd, h, 3, 3, 1, 1, all_holes, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    h[4] = INFINITY;
+    th_assert_result(tb_shape_create_heightfield(w, &sd, h, 3, 3, 1, 1, NULL, &shape),
+                     TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "height"));
+    assert_int_equal(tb_world_shape_ids(w, ids, 4), before);
+    h[4] = 0;
+    th_assert_ok(tb_shape_create_heightfield(w, &sd, h, 3, 3, 1, 1, NULL, &shape));
+    tb_body_def d = th_dynamic_def(shape, th_v3(0, 1, 0));
+    tb_body_id body;
+    th_assert_result(tb_body_create_many(w, &d, 1, &body), TB_ERROR_INVALID_ARGUMENT);
+    th_world_destroy(w);
+}
+
 /* Every broadphase gives the same contacts: a few spheres and boxes on a coarse grid. */
 static void test_broadphases_agree(void** state)
 {
@@ -337,6 +460,9 @@ int main(void)
         cmocka_unit_test(test_box_rests_on_fine_grid),
         cmocka_unit_test(test_box_slides_over_seams),
         cmocka_unit_test(test_hard_landings_stay_on_terrain),
+        cmocka_unit_test(test_sphere_rolls_down_heightfield_as_on_plane),
+        cmocka_unit_test(test_heightfield_rest_and_holes),
+        cmocka_unit_test(test_bad_heightfields_refused),
         cmocka_unit_test(test_broadphases_agree),
         cmocka_unit_test(test_bad_meshes_refused),
     };

@@ -55,7 +55,28 @@ void bp_put(uint a, uint b, uint sub)
     bp_found++;
 }
 
-// The pairs of (a, b), one of them a mesh body: one per triangle near the other's box.
+// A heightfield's triangles under the box [lo, hi] (its frame): both of every cell in
+// the box's range of rows and columns whose corners reach the box's height range.
+void bp_report_cells(uint a, uint b, uint shape, vec3 lo, vec3 hi)
+{
+    field_view field = field_of_shape(shape);
+    uvec4 range = field_cells(field, lo, hi);
+    for (uint k = range.y; k < range.w; k++) {
+        for (uint i = range.x; i < range.z; i++) {
+            float h0 = field_height(field, i, k), h1 = field_height(field, i + 1u, k);
+            float h2 = field_height(field, i, k + 1u), h3 = field_height(field, i + 1u, k + 1u);
+            if (min(min(h0, h1), min(h2, h3)) > hi.y || max(max(h0, h1), max(h2, h3)) < lo.y)
+                continue;
+            uint n = k * (field.count.x - 1u) + i;
+            if ((field_flags(field, 2u * n) & TB_MESH_DEGENERATE) != 0u) continue;   // a hole
+            bp_put(a, b, 2u * n + 1u);
+            bp_put(a, b, 2u * n + 2u);
+        }
+    }
+}
+
+// The pairs of (a, b), one of them a mesh or heightfield body: one per triangle near the
+// other's box.
 void bp_report_triangles(uint a, uint b)
 {
     uint m = body_is(a, TB_BODY_FLAG_MESH) ? a : b, other = m == a ? b : a;
@@ -63,7 +84,12 @@ void bp_report_triangles(uint a, uint b)
     vec3 lo, hi;
     mesh_local_box(body_pos[m].xyz, body_rot[m], body_aabb_min[other].xyz - reach,
                    body_aabb_max[other].xyz + reach, lo, hi);
-    mesh_view mesh = mesh_of_shape(body_info[m].x);
+    uint shape = body_info[m].x;
+    if (shapes[shape].info.x == TB_GPU_SHAPE_HEIGHTFIELD) {
+        bp_report_cells(a, b, shape, lo, hi);
+        return;
+    }
+    mesh_view mesh = mesh_of_shape(shape);
     uvec3 qlo, qhi;
     if (!mesh_query(mesh, lo, hi, qlo, qhi)) return;
     for (uint i = 0u; i < mesh.nodes;) {

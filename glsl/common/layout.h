@@ -127,9 +127,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 /* tb_gpu_body info.y */
 #define TB_BODY_FLAG_ALIVE      TB_U(1)
 #define TB_BODY_FLAG_DYNAMIC    TB_U(2)
-#define TB_BODY_FLAG_MESH       TB_U(4)   /* its shape is a triangle mesh: every broadphase
-                                             treats it as a large static body, and its pairs
-                                             are split into one per triangle (midphase) */
+#define TB_BODY_FLAG_MESH       TB_U(4)   /* its shape is made of triangles (a mesh or a
+                                             heightfield): every broadphase treats it as a
+                                             large static body, and its pairs are split into
+                                             one per triangle (midphase) */
 
 /* tb_gpu_shape info.x; equal to tb_shape_type in tumble.h */
 #define TB_GPU_SHAPE_SPHERE     TB_U(0)
@@ -137,6 +138,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_GPU_SHAPE_PLANE      TB_U(2)
 #define TB_GPU_SHAPE_HULL       TB_U(3)
 #define TB_GPU_SHAPE_MESH       TB_U(4)
+#define TB_GPU_SHAPE_HEIGHTFIELD TB_U(5)
 
 /* Convex hull limits: the GPU walks vertices, faces and edges per pair and clips an incident
  * face polygon in registers, so their sizes are bounded. tb_shape_create_hull rejects hulls
@@ -555,6 +557,21 @@ TB_STRUCT(tb_gpu_mesh_header) {
     TB_VEC4 hi;               /* xyz the box's high corner; w the vertex count (uint bits) */
     TB_UVEC4 sections;        /* where each part starts, in uvec4 from the image's start:
                                  x nodes, y triangles, z vertices (vec4, w 0); w unused */
+};
+
+/* A heightfield's GPU image (src/geom/heightfield.h packs it), reached like a mesh's (its
+ * shape's tb_gpu_shape.hull.xy), in uvec4 units: the header, the heights (four to a uvec4,
+ * row by row along x: sample (i, k) at k * counts.x + i), the cells' flags (four to a uvec4,
+ * cell (i, k) at k * (counts.x - 1) + i). Sample (i, k) lies at x = lo.x + i * cell_x,
+ * z = lo.z + k * cell_z. Cell (i, k) is two triangles of the samples a = (i, k),
+ * b = (i + 1, k), c = (i, k + 1), d = (i + 1, k + 1): triangle 2n = (a, c, b) and 2n + 1 =
+ * (b, c, d) for n = k * (counts.x - 1) + i, facing +y; a cell's flags hold triangle 2n's
+ * TB_MESH_* bits in bits 0-3 and 2n + 1's in bits 4-7 (a hole's are TB_MESH_DEGENERATE). */
+TB_STRUCT(tb_gpu_heightfield_header) {
+    TB_VEC4 lo;               /* x z the first sample's place, y the lowest height; w cell_x */
+    TB_VEC4 hi;               /* x z the last sample's place, y the highest height; w cell_z */
+    TB_UVEC4 counts;          /* x samples along x, y along z, z first height, w first cell's
+                                 flags (uvec4 from the image's start) */
 };
 
 /* A shape as the GPU sees it. */

@@ -30,17 +30,27 @@ struct np_triangle {
     uint flags;         // TB_MESH_*
 };
 
-// Triangle `index` of mesh body `mesh`, mapped into a frame by x -> rot * x + pos from the
-// mesh's body frame.
+// Triangle `index` of mesh or heightfield body `mesh`, mapped into a frame by
+// x -> rot * x + pos from the mesh's body frame.
 np_triangle np_load_triangle(np_body mesh, uint index, mat3 rot, vec3 pos)
 {
-    mesh_view m = mesh_of_shape(mesh.shape);
-    uvec4 tri = mesh_triangle(m, index);
+    vec3 p0, p1, p2;
+    uint flags;
+    if (mesh.type == TB_GPU_SHAPE_HEIGHTFIELD) {
+        field_triangle(field_of_shape(mesh.shape), index, p0, p1, p2, flags);
+    } else {
+        mesh_view m = mesh_of_shape(mesh.shape);
+        uvec4 tri = mesh_triangle(m, index);
+        p0 = mesh_vertex(m, tri.x);
+        p1 = mesh_vertex(m, tri.y);
+        p2 = mesh_vertex(m, tri.z);
+        flags = tri.w;
+    }
     np_triangle t;
-    t.v0 = rot * mesh_vertex(m, tri.x) + pos;
-    t.v1 = rot * mesh_vertex(m, tri.y) + pos;
-    t.v2 = rot * mesh_vertex(m, tri.z) + pos;
-    t.flags = tri.w;
+    t.v0 = rot * p0 + pos;
+    t.v1 = rot * p1 + pos;
+    t.v2 = rot * p2 + pos;
+    t.flags = flags;
     vec3 n = cross(t.v1 - t.v0, t.v2 - t.v0);
     float n2 = dot(n, n);
     if (n2 == 0.0) t.flags |= TB_MESH_DEGENERATE;

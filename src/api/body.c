@@ -39,9 +39,9 @@ static tb_result resolve_mass(tb_world* w, const tb_body_def* d, uint32_t i,
     if (shape->type == TB_SHAPE_PLANE)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: a plane has no volume; "
                        "only static bodies may use it", i);
-    if (shape->type == TB_SHAPE_MESH)
-        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: a triangle mesh is for "
-                       "static bodies only; give a moving body hulls or a compound", i);
+    if (shape->type == TB_SHAPE_MESH || shape->type == TB_SHAPE_HEIGHTFIELD)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: a triangle mesh or "
+                       "heightfield is for static bodies only; give a moving body hulls", i);
     float mass = d->mass > 0 ? d->mass : shape->volume * shape->material.density;
     if (!(mass > 0) || !isfinite(mass))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: a dynamic body needs a "

@@ -156,6 +156,30 @@ tb_result tb_shape_create_mesh(tb_world* w, const tb_shape_def* def, const tb_ve
     return tb_shapes_add(w, &rec, &gpu, out);
 }
 
+tb_result tb_shape_create_heightfield(tb_world* w, const tb_shape_def* def, const float* heights,
+                                      uint32_t count_x, uint32_t count_z, float cell_x,
+                                      float cell_z, const uint8_t* holes, tb_shape_id* out)
+{
+    tb_result r = check_material(w, def, out);
+    if (r) return r;
+    tb_heightfield* field = malloc(sizeof *field);
+    if (!field) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
+    char error[256];
+    if (tb_heightfield_build(heights, count_x, count_z, cell_x, cell_z, holes, field, error,
+                             sizeof error)) {
+        free(field);
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "heightfield: %s", error);
+    }
+    const float* lo = field->lo;
+    const float* hi = field->hi;
+    tb_shape_record rec = { .type = TB_SHAPE_HEIGHTFIELD, .material = *def, .heightfield = field };
+    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_HEIGHTFIELD, (tb_vec3){ (hi[0] - lo[0]) / 2,
+                                 (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
+    gpu.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
+                                     (hi[2] + lo[2]) / 2, 0 };
+    return tb_shapes_add(w, &rec, &gpu, out);
+}
+
 tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
                                 tb_shape_id* out)
 {

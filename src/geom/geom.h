@@ -5,6 +5,8 @@
  *                 in the principal frame (quickhull.c, hull.c, hull_mass.c)
  *   bvh.h         a triangle mesh's bounding volume hierarchy: median splits, depth-first
  *                 nodes with skip indices, boxes quantized to 16 bits (bvh.c)
+ *   heightfield.h heightfields: a grid of heights cut into triangles, holes, active edges
+ *                 (the mesh's rule), the GPU image (heightfield.c)
  *   mesh.h        triangle meshes: checked copies, active edges and degenerate triangles,
  *                 the BVH, and the GPU image of a mesh shape (mesh.c)
  *
@@ -16,6 +18,7 @@
 #define TB_GEOM_GEOM_H
 
 #include "geom/bvh.h"
+#include "geom/heightfield.h"
 #include "geom/hull.h"
 #include "geom/mesh.h"
 

@@ -254,6 +254,17 @@ static int find_inactive_edges(tb_mesh* m)
 
 /* ---- build ---------------------------------------------------------------------------- */
 
+int tb_mesh_flag_edges(tb_mesh* m)
+{
+    m->flags = malloc(((size_t)m->triangle_count + 1) * sizeof *m->flags);
+    if (!m->flags) return -1;
+    m->degenerate_count = flag_triangles(m);
+    if (!find_inactive_edges(m)) return 0;
+    free(m->flags);
+    m->flags = NULL;
+    return -1;
+}
+
 static void free_arrays(tb_mesh* m)
 {
     free(m->xyz);

@@ -56,6 +56,11 @@ int tb_mesh_build(const float* xyz, uint32_t vertex_count, const uint32_t* indic
 
 void tb_mesh_free(tb_mesh* mesh);
 
+/* The flags alone, as tb_mesh_build finds them, of a mesh whose xyz, indices and counts
+ * are set and checked (no BVH is built): allocates mesh->flags and sets degenerate_count.
+ * Returns -1 when out of memory (flags then NULL). Heightfields use it for their grid. */
+int tb_mesh_flag_edges(tb_mesh* mesh);
+
 /* Size of the mesh's GPU image in uvec4: the header, the BVH's nodes, the triangles, the
  * vertices. */
 size_t tb_mesh_image_size(const tb_mesh* mesh);

@@ -85,11 +85,24 @@ static void count_mesh_shape(tb_world* w, int change)
     if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
 }
 
-/* A mesh's GPU image has a buffer of its own, which the shape finds by its device address
- * (tb_gpu_shape.hull.xy); the next submission uploads it. */
+/* The GPU image of a mesh or heightfield: its bytes, and the image written at dst. */
+static VkDeviceSize image_bytes(const tb_shape_record* rec)
+{
+    size_t n = rec->mesh ? tb_mesh_image_size(rec->mesh) : tb_heightfield_image_size(rec->heightfield);
+    return n * sizeof(tb_gpu_uvec4);
+}
+
+static void pack_image(const tb_shape_record* rec, void* dst)
+{
+    if (rec->mesh) tb_mesh_pack(rec->mesh, dst);
+    else tb_heightfield_pack(rec->heightfield, dst);
+}
+
+/* A mesh's or heightfield's GPU image has a buffer of its own, which the shape finds by its
+ * device address (tb_gpu_shape.hull.xy); the next submission uploads it. */
 static tb_result create_mesh_buffer(tb_world* w, tb_shape_record* rec, tb_gpu_shape* gpu)
 {
-    VkDeviceSize bytes = tb_mesh_image_size(rec->mesh) * sizeof(tb_gpu_uvec4);
+    VkDeviceSize bytes = image_bytes(rec);
     tb_result r = tb_buffer_create(&w->memory, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                    VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &rec->mesh_buffer);
     if (r) return r;
@@ -104,14 +117,15 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* g
                         tb_shape_id* out)
 {
     tb_gpu_shape entry = *gpu;
-    tb_result r = rec->mesh ? create_mesh_buffer(w, rec, &entry) : TB_OK;
+    int triangles = rec->mesh || rec->heightfield;
+    tb_result r = triangles ? create_mesh_buffer(w, rec, &entry) : TB_OK;
     if (!r) r = add_shape(w, rec, &entry, out);
     if (r) {
         tb_buffer_destroy(&w->memory, &rec->mesh_buffer);
         tb_shape_release_hull(rec);
         return r;
     }
-    if (rec->mesh) {
+    if (triangles) {
         count_mesh_shape(w, +1);
         w->mesh_uploads++;
     }
@@ -128,6 +142,11 @@ void tb_shape_release_hull(tb_shape_record* s)
         free(s->mesh);
         s->mesh = NULL;
     }
+    if (s->heightfield) {
+        tb_heightfield_free(s->heightfield);
+        free(s->heightfield);
+        s->heightfield = NULL;
+    }
     if (!s->hull) return;
     tb_hull_free(s->hull);
     free(s->hull);
@@ -140,7 +159,7 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     s->alive = 0;
     if (s->hull) w->narrowphase.hulls.dirty = 1;
     if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
-    if (s->mesh) {
+    if (s->mesh || s->heightfield) {
         count_mesh_shape(w, -1);
         if (s->mesh_pending) w->mesh_uploads--;
         s->mesh_pending = 0;
@@ -155,7 +174,7 @@ VkDeviceSize tb_shapes_mesh_upload_bytes(const tb_world* w)
     VkDeviceSize bytes = 0;
     for (uint32_t s = 0; w->mesh_uploads && s < w->shape_slots.used; s++)
         if (w->shapes[s].alive && w->shapes[s].mesh_pending)
-            bytes += tb_mesh_image_size(w->shapes[s].mesh) * sizeof(tb_gpu_uvec4);
+            bytes += image_bytes(&w->shapes[s]);
     return bytes;
 }
 
@@ -164,10 +183,9 @@ void tb_shapes_record_mesh_uploads(tb_world* w, tb_transfer* t)
     for (uint32_t s = 0; w->mesh_uploads && s < w->shape_slots.used; s++) {
         tb_shape_record* rec = &w->shapes[s];
         if (!rec->alive || !rec->mesh_pending) continue;
-        VkDeviceSize bytes = tb_mesh_image_size(rec->mesh) * sizeof(tb_gpu_uvec4);
-        void* dst = tb_transfer_upload(t, rec->mesh_buffer.buffer, 0, bytes);
+        void* dst = tb_transfer_upload(t, rec->mesh_buffer.buffer, 0, image_bytes(rec));
         if (!dst) continue;   /* the transfer's error stands; the upload waits */
-        tb_mesh_pack(rec->mesh, dst);
+        pack_image(rec, dst);
         rec->mesh_pending = 0;
         w->mesh_uploads--;
     }

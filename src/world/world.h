@@ -49,8 +49,9 @@ typedef struct tb_shape_record {
     uint32_t users;         ///< live bodies using the shape
     tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
     tb_mesh* mesh;          ///< meshes: their geometry (owned); else NULL
-    tb_buffer mesh_buffer;  ///< meshes: the GPU image (tb_gpu_mesh_header), by device address
-    int mesh_pending;       ///< meshes: the image is not uploaded yet
+    tb_heightfield* heightfield; ///< heightfields: their grid (owned); else NULL
+    tb_buffer mesh_buffer;  ///< meshes and heightfields: the GPU image, by device address
+    int mesh_pending;       ///< meshes and heightfields: the image is not uploaded yet
 } tb_shape_record;
 
 /// Contact events of one step, as the callbacks get them.
@@ -122,7 +123,8 @@ struct tb_world {
     uint32_t bouncy_shapes;      ///< shapes ever made with restitution > 0: the block solver
                                  ///< records its restitution pass once there is one
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
-    uint32_t mesh_shapes;        ///< live TB_SHAPE_MESH shapes: the step records the mesh passes
+    uint32_t mesh_shapes;        ///< live mesh and heightfield shapes: the step records the
+                                 ///< mesh passes
     uint32_t mesh_uploads;       ///< mesh images waiting for the next submission
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
