@@ -1,6 +1,7 @@
-"""The binding's reach over include/tumble.h, on lavapipe: every shape, single bodies'
-poses, velocities and impulses, gravity, destroy, contacts as a numpy structured array,
-stats, the log and the device. Scenes are a handful of bodies and tens of steps."""
+"""The binding's reach over include/tumble.h, on lavapipe: every shape (triangle meshes
+included), single bodies' poses, velocities and impulses, gravity, destroy, contacts as a
+numpy structured array, stats, the log and the device. Scenes are a handful of bodies and
+tens of steps."""
 import numpy as np
 import pytest
 
@@ -125,6 +126,69 @@ def test_hull_shape(make_world):
     assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
     with pytest.raises(tumble.TumbleError):
         world.hull_info(world.sphere(1))
+
+
+QUAD = [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]]         # y = 0, 4 m square
+UP = [[0, 2, 1], [0, 3, 2]]                                       # counter-clockwise from +y
+
+
+def grid_mesh(quads, size):
+    """A flat square of quads x quads quads, `size` m across at y = 0, facing up."""
+    x = np.linspace(-size / 2, size / 2, quads + 1)
+    xx, zz = np.meshgrid(x, x, indexing="ij")
+    vertices = np.stack([xx, np.zeros_like(xx), zz], axis=-1).reshape(-1, 3)
+    at = np.arange((quads + 1) ** 2).reshape(quads + 1, quads + 1)
+    a, b, c, d = at[:-1, :-1], at[1:, :-1], at[1:, 1:], at[:-1, 1:]   # +x is i, +z is j
+    triangles = np.concatenate([np.stack([a, d, c], -1), np.stack([a, c, b], -1)])
+    return vertices, triangles.reshape(-1, 3)
+
+
+def test_mesh_geometry_and_info_round_trip(make_world):
+    world = make_world()
+    quad = world.mesh(np.array(QUAD, dtype=np.float64), np.array(UP, dtype=np.int64),
+                      friction=0.5)
+    assert world.shape_type(quad) == "mesh"
+    info = world.mesh_info(quad)
+    assert (info["vertex_count"], info["triangle_count"]) == (4, 2)
+    assert (info["degenerate_count"], info["active_edge_count"]) == (0, 4)  # not the diagonal
+    np.testing.assert_array_equal(info["aabb_min"], [-2, 0, -2])
+    np.testing.assert_array_equal(info["aabb_max"], [2, 0, 2])
+    vertices, triangles = world.mesh_geometry(quad)
+    assert vertices.dtype == np.float32 and triangles.dtype == np.uint32
+    np.testing.assert_array_equal(vertices, QUAD)
+    np.testing.assert_array_equal(triangles, UP)
+    grid = world.mesh(*grid_mesh(20, 10.0))
+    info = world.mesh_info(grid)
+    assert (info["triangle_count"], info["active_edge_count"]) == (800, 80)   # the border
+    flat = world.mesh(QUAD, UP + [[1, 1, 2]])                       # one of zero area
+    assert world.mesh_info(flat)["degenerate_count"] == 1
+    with pytest.raises(tumble.TumbleError, match="is not a mesh"):
+        world.mesh_info(world.sphere(1))
+
+
+def test_sphere_rests_on_a_two_triangle_mesh(make_world):
+    world = make_world()
+    world.add_body(world.mesh(QUAD, UP), static=True)
+    ball = world.add_body(world.sphere(0.5), (0.3, 0.5, -0.2))
+    heights = []
+    for _ in range(120):
+        world.step(DT)
+        heights.append(world.pose(ball)[0][1])
+    assert np.all(np.abs(np.array(heights) - 0.5) < 1e-3), heights
+    np.testing.assert_allclose(world.pose(ball)[0][[0, 2]], [0.3, -0.2], atol=1e-3)
+
+
+def test_box_dropped_on_a_mesh_grid_comes_to_rest_above_it(make_world):
+    world = make_world()
+    world.add_body(world.mesh(*grid_mesh(20, 10.0)), static=True)
+    box = world.add_body(world.box((0.5, 0.25, 0.5)), (0.3, 1.0, 0.1),
+                         rotation=(0, np.sin(0.2), 0, np.cos(0.2)))
+    world.step(DT, n=120)
+    p, _ = world.pose(box)
+    v, w = world.velocity(box)
+    assert p[1] == pytest.approx(0.25, abs=0.01)
+    assert np.linalg.norm(v) < 0.01 and np.linalg.norm(w) < 0.01
+    assert len(world.contacts()) > 0
 
 
 def test_destroy_bodies_and_shapes(make_world):

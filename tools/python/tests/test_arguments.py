@@ -61,6 +61,57 @@ def test_add_bodies_refuses_mismatched_and_wrong_per_body_arrays(world, ball):
     assert world.stats()["body_count"] == 0
 
 
+QUAD = [[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]]
+UP = [[0, 2, 1], [0, 3, 2]]
+
+
+@pytest.mark.parametrize("vertices, triangles, error, words", [
+    (np.zeros((3, 2)), UP, ValueError, r"vertices must be an \(n, 3\) array.*shape \(3, 2\)"),
+    (QUAD, [[0, 2], [0, 3]], ValueError, r"triangles must be an \(n, 3\).*shape \(2, 2\)"),
+    (QUAD, np.zeros((2, 1, 3), int), ValueError, r"triangles must be.*shape \(2, 1, 3\)"),
+    (np.zeros((1, 4, 3)), UP, ValueError, r"vertices must be.*shape \(1, 4, 3\)"),
+    (QUAD, np.ravel(UP), ValueError, r"triangles must be an \(n, 3\).*shape \(6,\)"),
+    (QUAD, [[0, 2, 1], [0, -3, 2]], ValueError, "triangles must be indices from 0 to "
+                                                 r"2\^32 - 1, got -3"),
+    (QUAD, [[0, 2, 2 ** 32]], ValueError, r"triangles must be indices .* got 4294967296"),
+    (QUAD, [[0, 2, 1.5]], TypeError, "triangles must hold integers.*float64"),
+    (QUAD, np.array(UP, dtype=np.float32), TypeError, "triangles must hold integers.*float32"),
+    (QUAD, np.array(UP) + 0j, TypeError, "triangles must hold integers.*complex"),
+    (np.array(QUAD) + 1j, UP, TypeError, "vertices must hold real numbers.*complex"),
+    (QUAD, np.ones((2, 3), bool), TypeError, "triangles must hold integers.*bool"),
+    (QUAD, "0 2 1", TypeError, "triangles must be integers"),
+    (QUAD, [[0, 2, 1], [0, 3]], ValueError, "triangles must be a rectangular array"),
+    ([[-1, 0, -1], [1, np.nan, -1], [1, 0, 1], [-1, 0, 1]], UP, tumble.TumbleError,
+     "triangle mesh: vertex 1 is not finite"),
+    (QUAD, [[0, 2, 1], [0, 4, 2]], tumble.TumbleError,
+     "triangle mesh: triangle 1's index 1 is vertex 4, but the mesh has 4 vertices"),
+    (QUAD, np.zeros((0, 3), int), tumble.TumbleError, "at least one triangle"),
+])
+def test_mesh_refuses_what_is_not_vertices_and_triangles(world, vertices, triangles, error,
+                                                         words):
+    before = world.stats()["shape_count"]
+    with pytest.raises(error, match=words) as caught:
+        world.mesh(vertices, triangles)
+    if error is tumble.TumbleError:
+        assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    assert world.stats()["shape_count"] == before
+
+
+def test_a_mesh_is_for_static_bodies_only(world, ball):
+    quad = world.mesh(QUAD, UP)
+    shapes, bodies = world.stats()["shape_count"], world.stats()["body_count"]
+    with pytest.raises(tumble.TumbleError, match="triangle mesh is for static bodies only") \
+            as caught:
+        world.add_bodies(quad, [[0, 0, 0], [5, 0, 0]])
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    assert (world.stats()["shape_count"], world.stats()["body_count"]) == (shapes, bodies)
+    with pytest.raises(tumble.TumbleError, match="is not a mesh"):
+        world.mesh_geometry(ball)
+    with pytest.raises(TypeError, match="shape must be a tumble.Shape .*mesh"):
+        world.mesh_info("quad")
+    world.destroy(quad)
+
+
 def test_step_refuses_bad_counts_and_times(world):
     with pytest.raises(ValueError, match=r"n must be a non-negative integer \(the number of "
                                          r"steps\) below 2\^32, got -1"):

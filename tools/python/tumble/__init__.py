@@ -53,7 +53,8 @@ SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_
 
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
-                lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull"}
+                lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull",
+                lib.TB_SHAPE_MESH: "mesh"}
 _LOG_LEVELS = {lib.TB_LOG_DEBUG: "debug", lib.TB_LOG_INFO: "info",
                lib.TB_LOG_WARNING: "warning", lib.TB_LOG_ERROR: "error"}
 
@@ -139,6 +140,24 @@ def _reals(name, value):
     return np.ascontiguousarray(a, dtype=np.float32)
 
 
+def _indices(name, value):
+    """`value` as a uint32 array, refusing what is not integers (floats, strings, complex,
+    booleans, objects, ragged lists) and integers a uint32 cannot hold."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError("%s must be integers, got %r" % (name, value))
+    try:
+        a = np.asarray(value)
+    except (ValueError, TypeError) as e:
+        raise ValueError("%s must be a rectangular array of integers (%s)" % (name, e)) \
+            from None
+    if a.dtype.kind not in "iu" and not (a.size == 0 and a.dtype.kind == "f"):  # [] is float
+        raise TypeError("%s must hold integers, got an array of %s" % (name, a.dtype))
+    if a.size and (a.min() < 0 or a.max() > 0xffffffff):
+        bad = a.min() if a.min() < 0 else a.max()
+        raise ValueError("%s must be indices from 0 to 2^32 - 1, got %d" % (name, bad))
+    return np.ascontiguousarray(a, dtype=np.uint32)
+
+
 def _vector(name, value, size):
     a = _reals(name, value)
     if a.shape != (size,):
@@ -157,10 +176,10 @@ def _quat(name, value):
     return ffi.new("tb_quat*", (x, y, z, w))[0]
 
 
-def _rows(name, value, columns, n=None):
-    """An (n, columns) float32 array. One row of `columns` numbers is taken as one row, or,
-    when `n` is given, as the row of all n."""
-    a = _reals(name, value)
+def _rows(name, value, columns, n=None, read=_reals):
+    """An (n, columns) array, float32 (or as `read` makes it). One row of `columns` numbers
+    is taken as one row, or, when `n` is given, as the row of all n."""
+    a = read(name, value)
     if a.ndim == 1 and a.shape[0] == columns:
         a = a.reshape(1, columns) if n is None else np.tile(a, (n, 1))
     if a.ndim != 2 or a.shape[1] != columns:
@@ -210,7 +229,8 @@ class _Id:
 
 
 class Shape(_Id):
-    """A shape's id (World.sphere, box, plane, hull). Any number of bodies may use it."""
+    """A shape's id (World.sphere, box, plane, hull, mesh). Any number of bodies may use
+    it; a plane or a mesh, static ones only."""
     __slots__ = ()
     _ctype = "tb_shape_id"
 
@@ -285,8 +305,8 @@ def _as_body(name, value):
 
 def _as_shape(name, value):
     if not isinstance(value, Shape):
-        raise TypeError("%s must be a tumble.Shape (from World.sphere, box, plane or hull), "
-                        "got %r" % (name, value))
+        raise TypeError("%s must be a tumble.Shape (from World.sphere, box, plane, hull or "
+                        "mesh), got %r" % (name, value))
     return value
 
 
@@ -543,8 +563,45 @@ class World:
                 w, s, ffi.from_buffer("tb_vec3[]", out), count[0], count))
         return out
 
+    def mesh(self, vertices, triangles, friction=None, restitution=None):
+        """A triangle mesh, for static bodies: `vertices` ((n, 3) m, body frame) and
+        `triangles` ((m, 3) integer indices into them). A triangle collides on its front,
+        the side from which its vertices run counter-clockwise; neighbours share vertex
+        indices. mesh_info says what it became."""
+        v = _rows("vertices", vertices, 3)
+        t = _rows("triangles", triangles, 3, read=_indices)
+        return self._shape(lambda w, d, o: lib.tb_shape_create_mesh(
+            w, d, ffi.from_buffer("tb_vec3[]", v), len(v), ffi.from_buffer("uint32_t[]", t),
+            len(t), o), None, friction, restitution)
+
+    def mesh_info(self, shape):
+        """What a mesh became: vertex_count, triangle_count, degenerate_count (triangles of
+        zero area, which touch nothing), active_edge_count (edges a body may touch with
+        their own normal), aabb_min and aabb_max (body frame)."""
+        s = _as_shape("shape", shape)
+        info = ffi.new("tb_mesh_info*")
+        self._check(lib.tb_shape_get_mesh_info(self._handle(), s._c(), info))
+        v3 = lambda v: np.array([v.x, v.y, v.z], dtype=np.float32)  # noqa: E731
+        return {"vertex_count": info.vertex_count, "triangle_count": info.triangle_count,
+                "degenerate_count": info.degenerate_count,
+                "active_edge_count": info.active_edge_count,
+                "aabb_min": v3(info.aabb_min), "aabb_max": v3(info.aabb_max)}
+
+    def mesh_geometry(self, shape):
+        """A mesh's vertices ((n, 3) float32) and triangles ((m, 3) uint32), as given."""
+        s = _as_shape("shape", shape)._c()
+        w = self._handle()
+        nv, nt = ffi.new("uint32_t*"), ffi.new("uint32_t*")
+        self._check(lib.tb_shape_get_mesh_geometry(w, s, ffi.NULL, 0, ffi.NULL, 0, nv, nt))
+        vertices = np.empty((nv[0], 3), dtype=np.float32)
+        triangles = np.empty((nt[0], 3), dtype=np.uint32)
+        self._check(lib.tb_shape_get_mesh_geometry(
+            w, s, ffi.from_buffer("tb_vec3[]", vertices), nv[0],
+            ffi.from_buffer("uint32_t[]", triangles), nt[0], nv, nt))
+        return vertices, triangles
+
     def shape_type(self, shape):
-        """"sphere", "box", "plane" or "hull"."""
+        """"sphere", "box", "plane", "hull" or "mesh"."""
         out = ffi.new("tb_shape_type*")
         self._check(lib.tb_shape_get_type(self._handle(), _as_shape("shape", shape)._c(), out))
         return _SHAPE_TYPES[out[0]]
