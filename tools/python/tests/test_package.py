@@ -1,5 +1,5 @@
 """The package as users get it: how it finds the library (TUMBLE_LIBRARY, pkg-config, the
-source tree), the errors when it cannot, and the README's example, run as a script."""
+source tree), the errors when it cannot, and the README's examples, run as scripts."""
 import os
 import re
 import shutil
@@ -107,6 +107,16 @@ def test_the_readme_example_is_examples_pile_py():
         lines = f.read().splitlines(keepends=True)
     assert lines[0].startswith('"""')                    # its docstring, then the README's
     assert blocks[0] == "".join(lines[1:])
+
+
+def test_the_readme_mesh_example_prints_what_it_shows():
+    with open(README) as f:
+        text = f.read()
+    section = text[text.index("## Triangle meshes"):]
+    code, shown = re.findall(r"```(?:python)?\n(.*?)```", section, re.S)[:2]
+    done = run_python(code, {})
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == shown
 
 
 def test_the_example_pile_settles():
