@@ -137,12 +137,14 @@ static void test_hull_rests_on_quad(void** state)
 static void test_sphere_rests_on_fine_grid(void** state)
 {
     (void)state;
+    if (!th_large_scene_runs("the sphere on the fine grid", "128")) skip();
     rests_on(200, 20.0f, 0);
 }
 
 static void test_box_rests_on_fine_grid(void** state)
 {
     (void)state;
+    if (!th_large_scene_runs("the box on the fine grid", "256")) skip();
     rests_on(200, 20.0f, 1);
 }
 
@@ -222,6 +224,7 @@ static tb_shape_id random_hull(tb_world* w, th_rng* rng)
 static void test_hard_landings_stay_on_terrain(void** state)
 {
     (void)state;
+    if (!th_large_scene_runs("the hard landings", "128")) skip();
     tb_world* w = th_world_create(NULL);
     grid_mesh m = rolling_terrain();
     static_mesh(w, &m, 0.6f);
@@ -378,6 +381,7 @@ static void test_bad_heightfields_refused(void** state)
 static void test_broadphases_agree(void** state)
 {
     (void)state;
+    if (!th_large_scene_runs("the broadphases' agreement", "256")) skip();
     const tb_broadphase kinds[] = { TB_BROADPHASE_GRID, TB_BROADPHASE_SAP, TB_BROADPHASE_LBVH,
                                     TB_BROADPHASE_ISAP };
     uint32_t counts[4];
