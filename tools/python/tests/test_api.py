@@ -166,6 +166,21 @@ def test_mesh_geometry_and_info_round_trip(make_world):
         world.mesh_info(world.sphere(1))
 
 
+def test_heightfield_holds_a_ball_and_lets_one_through_a_hole(make_world):
+    world = make_world()
+    heights = np.zeros((9, 9))                  # 8 x 8 cells of 1 m, centred: x, z in [-4, 4]
+    holes = np.zeros((8, 8), bool)
+    holes[4, 4] = True                          # the cell x, z in [0, 1]
+    field = world.heightfield(heights, (1.0, 1.0), holes)
+    assert world.shape_type(field) == "heightfield"
+    world.add_body(field, static=True)
+    resting = world.add_body(world.sphere(0.3), (-2.5, 0.3, 1.5))
+    falling = world.add_body(world.sphere(0.3), (0.5, 0.3, 0.5))
+    world.step(DT, n=90)
+    np.testing.assert_allclose(world.pose(resting)[0], [-2.5, 0.3, 1.5], atol=1e-3)
+    assert world.pose(falling)[0][1] < -1.0
+
+
 def test_sphere_rests_on_a_two_triangle_mesh(make_world):
     world = make_world()
     world.add_body(world.mesh(QUAD, UP), static=True)

@@ -100,7 +100,7 @@ def test_mesh_refuses_what_is_not_vertices_and_triangles(world, vertices, triang
 def test_a_mesh_is_for_static_bodies_only(world, ball):
     quad = world.mesh(QUAD, UP)
     shapes, bodies = world.stats()["shape_count"], world.stats()["body_count"]
-    with pytest.raises(tumble.TumbleError, match="triangle mesh is for static bodies only") \
+    with pytest.raises(tumble.TumbleError, match="is for static bodies only") \
             as caught:
         world.add_bodies(quad, [[0, 0, 0], [5, 0, 0]])
     assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
@@ -110,6 +110,24 @@ def test_a_mesh_is_for_static_bodies_only(world, ball):
     with pytest.raises(TypeError, match="shape must be a tumble.Shape .*mesh"):
         world.mesh_info("quad")
     world.destroy(quad)
+
+
+@pytest.mark.parametrize("heights, cell, holes, error, words", [
+    (np.zeros(9), (1, 1), None, ValueError, r"heights must be a \(count_z, count_x\) array"),
+    (np.zeros((3, 3)) + 1j, (1, 1), None, TypeError, "heights must hold real numbers"),
+    (np.zeros((3, 3)), (1, 1, 1), None, ValueError, "cell must be 2 numbers"),
+    (np.zeros((3, 3)), (1, 1), np.zeros((3, 3), bool), ValueError, r"holes must be a \(2, 2\) array"),
+    (np.zeros((3, 3)), (1, 1), np.zeros((2, 2)) + 0.5, TypeError, "holes must hold booleans"),
+    (np.zeros((3, 3)), (0, 1), None, tumble.TumbleError, "cell sizes must be finite and > 0"),
+    (np.zeros((1, 3)), (1, 1), None, tumble.TumbleError, "2 to 32768 samples"),
+    (np.full((3, 3), np.inf), (1, 1), None, tumble.TumbleError, "heights must be finite"),
+    (np.zeros((3, 3)), (1, 1), np.ones((2, 2), bool), tumble.TumbleError, "every cell is a hole"),
+])
+def test_heightfield_refuses_what_is_not_a_grid(world, heights, cell, holes, error, words):
+    before = world.stats()["shape_count"]
+    with pytest.raises(error, match=words):
+        world.heightfield(heights, cell, holes)
+    assert world.stats()["shape_count"] == before
 
 
 def test_step_refuses_bad_counts_and_times(world):

@@ -54,7 +54,7 @@ SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
                 lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull",
-                lib.TB_SHAPE_MESH: "mesh"}
+                lib.TB_SHAPE_MESH: "mesh", lib.TB_SHAPE_HEIGHTFIELD: "heightfield"}
 _LOG_LEVELS = {lib.TB_LOG_DEBUG: "debug", lib.TB_LOG_INFO: "info",
                lib.TB_LOG_WARNING: "warning", lib.TB_LOG_ERROR: "error"}
 
@@ -229,8 +229,8 @@ class _Id:
 
 
 class Shape(_Id):
-    """A shape's id (World.sphere, box, plane, hull, mesh). Any number of bodies may use
-    it; a plane or a mesh, static ones only."""
+    """A shape's id (World.sphere, box, plane, hull, mesh, heightfield). Any number of bodies
+    may use it; a plane, a mesh or a heightfield, static ones only."""
     __slots__ = ()
     _ctype = "tb_shape_id"
 
@@ -574,6 +574,34 @@ class World:
             w, d, ffi.from_buffer("tb_vec3[]", v), len(v), ffi.from_buffer("uint32_t[]", t),
             len(t), o), None, friction, restitution)
 
+    def heightfield(self, heights, cell=(1.0, 1.0), holes=None, friction=None,
+                    restitution=None):
+        """A heightfield, for static bodies: `heights` a (count_z, count_x) array of y (m),
+        row k along x, sample (i, k) at x = (i - (count_x - 1) / 2) * cell[0] and
+        z = (k - (count_z - 1) / 2) * cell[1] (centred on the body's origin); each cell two
+        triangles facing +y. `holes`, if given, a (count_z - 1, count_x - 1) array of
+        booleans or integers: nonzero cells are holes."""
+        h = _reals("heights", heights)
+        if h.ndim != 2:
+            raise ValueError("heights must be a (count_z, count_x) array, got an array of "
+                             "shape %s" % (h.shape,))
+        cx, cz = (float(c) for c in _vector("cell", cell, 2))
+        mask = ffi.NULL
+        if holes is not None:
+            m = np.asarray(holes)
+            if m.dtype.kind not in "biu":
+                raise TypeError("holes must hold booleans or integers, got an array of %s"
+                                % m.dtype)
+            if m.shape != (h.shape[0] - 1, h.shape[1] - 1):
+                raise ValueError("holes must be a (%d, %d) array, one per cell, got shape %s"
+                                 % (h.shape[0] - 1, h.shape[1] - 1, m.shape))
+            holes_u8 = np.ascontiguousarray(m != 0, dtype=np.uint8)
+            mask = ffi.from_buffer("uint8_t[]", holes_u8)
+        nz, nx = h.shape
+        return self._shape(lambda w, d, o: lib.tb_shape_create_heightfield(
+            w, d, ffi.from_buffer("float[]", h), nx, nz, cx, cz, mask, o), None, friction,
+            restitution)
+
     def mesh_info(self, shape):
         """What a mesh became: vertex_count, triangle_count, degenerate_count (triangles of
         zero area, which touch nothing), active_edge_count (edges a body may touch with
@@ -601,7 +629,7 @@ class World:
         return vertices, triangles
 
     def shape_type(self, shape):
-        """"sphere", "box", "plane", "hull" or "mesh"."""
+        """"sphere", "box", "plane", "hull", "mesh" or "heightfield"."""
         out = ffi.new("tb_shape_type*")
         self._check(lib.tb_shape_get_type(self._handle(), _as_shape("shape", shape)._c(), out))
         return _SHAPE_TYPES[out[0]]
