@@ -94,6 +94,7 @@ tb_quat hulls_random_rotation(uint32_t* rng);
 
 /* terrain.c */
 tb_result terrain_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result heightfield_build(tb_world* world, const scene_params* params, scene_instance** out);
 
 /* stacks.c */
 tb_result stack_build(tb_world* world, const scene_params* params, scene_instance** out);

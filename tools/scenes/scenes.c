@@ -254,6 +254,9 @@ static const scene scenes[] = {
                  "hills, a static triangle mesh of 131,072 triangles; checks nan, escaped "
                  "(through or off it), resting, max_penetration", 1.0f / 60.0f, 10000, 600,
       terrain_build, pile_check, instance_free },
+    { "heightfield", "the terrain scene on a heightfield of the same 131,072 triangles "
+                     "(cells found by row and column, no tree)", 1.0f / 60.0f, 10000, 600,
+      heightfield_build, pile_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))

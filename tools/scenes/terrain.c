@@ -1,5 +1,6 @@
 /* Terrain: N bodies, boxes and hulls by turns, dropped in TERRAIN_LAYERS layers onto a static
- * triangle mesh of TERRAIN_CELLS x TERRAIN_CELLS quads (two triangles each, 131,072 in all):
+ * triangle mesh of TERRAIN_CELLS x TERRAIN_CELLS quads (two triangles each, 131,072 in all;
+ * the scene `heightfield` has the same surface as a heightfield of as many cells):
  * a bowl, so what lands stays on it, with rolling hills of TERRAIN_HILL m on top. The
  * terrain spans the drop grid and a margin; its cells grow with N (a 10,000-body drop gets
  * cells of about 0.22 m, smaller than a body; 100,000 bodies about 0.68 m).
@@ -56,7 +57,24 @@ static tb_result make_terrain(tb_world* w, float half, tb_shape_id* out)
     return r;
 }
 
-tb_result terrain_build(tb_world* w, const scene_params* params, scene_instance** out)
+/* The same surface as a heightfield: the grid's samples, centred as the mesh is. */
+static tb_result make_field(tb_world* w, float half, tb_shape_id* out)
+{
+    const uint32_t side = TERRAIN_CELLS + 1;
+    float* h = malloc(sizeof *h * side * side);
+    if (!h) return TB_ERROR_OUT_OF_MEMORY;
+    float cell = 2.0f * half / TERRAIN_CELLS;
+    for (uint32_t k = 0; k < side; k++)
+        for (uint32_t i = 0; i < side; i++)
+            h[k * side + i] = terrain_height(half * (2.0f * (float)i / TERRAIN_CELLS - 1.0f),
+                                             half * (2.0f * (float)k / TERRAIN_CELLS - 1.0f), half);
+    tb_shape_def sd = tb_default_shape_def();
+    tb_result r = tb_shape_create_heightfield(w, &sd, h, side, side, cell, cell, NULL, out);
+    free(h);
+    return r;
+}
+
+static tb_result build(tb_world* w, const scene_params* params, int field, scene_instance** out)
 {
     *out = NULL;
     uint32_t n = params->n;
@@ -70,7 +88,7 @@ tb_result terrain_build(tb_world* w, const scene_params* params, scene_instance*
     tb_shape_def sd = tb_default_shape_def();
     if (r == TB_OK) r = tb_shape_create_box(w, &sd, (tb_vec3){ TERRAIN_BOX, TERRAIN_BOX,
                                                                TERRAIN_BOX }, &box);
-    if (r == TB_OK) r = make_terrain(w, half, &terrain);
+    if (r == TB_OK) r = field ? make_field(w, half, &terrain) : make_terrain(w, half, &terrain);
     scene_instance* inst = r == TB_OK ? instance_alloc(n) : NULL;
     tb_body_def* defs = malloc((n ? n : 1) * sizeof *defs);
     if (r == TB_OK && (!inst || !defs)) r = TB_ERROR_OUT_OF_MEMORY;
@@ -107,4 +125,14 @@ tb_result terrain_build(tb_world* w, const scene_params* params, scene_instance*
     inst->box_max = (tb_vec3){ half, 1.0e6f, half };
     *out = inst;
     return TB_OK;
+}
+
+tb_result terrain_build(tb_world* w, const scene_params* params, scene_instance** out)
+{
+    return build(w, params, 0, out);
+}
+
+tb_result heightfield_build(tb_world* w, const scene_params* params, scene_instance** out)
+{
+    return build(w, params, 1, out);
 }
