@@ -323,6 +323,44 @@ static void test_bad_hulls(void** state)
     EXPECT_REJECT(fx, tb_shape_get_hull_info(w, fx->box, &info), TB_ERROR_INVALID_ARGUMENT);
 }
 
+/* Mesh and heightfield input the builders must refuse, and their getters' bad arguments. */
+static void test_bad_meshes_and_heightfields(void** state)
+{
+    fixture* fx = *state;
+    tb_world* w = fx->w;
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id out = tb_null_shape;
+    tb_vec3 v[4] = { th_v3(0, 0, 0), th_v3(0, 0, 1), th_v3(1, 0, 0), th_v3(1, 0, 1) };
+    uint32_t tri[6] = { 0, 1, 2, 2, 1, 3 }, far[3] = { 0, 1, 7 }, same[3] = { 1, 1, 1 };
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, NULL, 4, tri, 2, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, NULL, 2, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, tri, 0, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, far, 1, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, same, 1, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, tri, 2, NULL), TB_ERROR_INVALID_ARGUMENT);
+    v[2].x = 2.0e6f;
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, tri, 2, &out), TB_ERROR_INVALID_ARGUMENT);
+    v[2].x = NAN;
+    EXPECT_REJECT(fx, tb_shape_create_mesh(w, &sd, v, 4, tri, 2, &out), TB_ERROR_INVALID_ARGUMENT);
+    float h[6] = { 0, 0, 0, 0, 0, 0 };
+    EXPECT_REJECT(fx, tb_shape_create_heightfield(w, &sd, NULL, 3, 2, 1, 1, NULL, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_heightfield(w, &sd, h, 6, 1, 1, 1, NULL, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_heightfield(w, &sd, h, 3, 2, -1, 1, NULL, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_heightfield(w, &sd, h, 3, 2, 1, INFINITY, NULL, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    h[3] = NAN;
+    EXPECT_REJECT(fx, tb_shape_create_heightfield(w, &sd, h, 3, 2, 1, 1, NULL, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    tb_mesh_info info;
+    uint32_t nv, nt;
+    EXPECT_REJECT(fx, tb_shape_get_mesh_info(w, fx->box, &info), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_get_mesh_geometry(w, fx->box, NULL, 0, NULL, 0, &nv, &nt),
+                  TB_ERROR_INVALID_ARGUMENT);
+}
+
 /* A cube given off-centre with points inside and on its faces: the hull is the cube, its
  * body frame sits at the cube's centre, and it can be used, stepped and destroyed. */
 static void test_hull_shape(void** state)
@@ -681,6 +719,7 @@ int main(void)
         T(test_shape_in_use),
         cmocka_unit_test(test_capacity),
         T(test_bad_hulls),
+        T(test_bad_meshes_and_heightfields),
         T(test_hull_shape),
     };
 #undef T
