@@ -57,7 +57,7 @@ PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUIL
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
                 $(BUILD)/tests/plugins/count_events.so
-RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag))
+RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag tools/render/shaders/*.comp))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
 # GLFW is optional: with it, the renderer can open a window (tumble-run --window).

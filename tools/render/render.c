@@ -1,10 +1,11 @@
 /* tools/render: the public tr_ calls. A frame is one command buffer on the world's queue:
- * a barrier after the world's compute writes, one render pass (planes, then instanced
- * spheres, boxes and hulls, then AABB lines, then contact lines, depth-tested, then the
+ * a barrier after the world's compute writes, a compute pass that lists the bodies of each
+ * triangle-mesh shape (render_meshes.c), one render pass (planes, then instanced spheres,
+ * boxes, hulls and meshes, then AABB lines, then contact lines, depth-tested, then the
  * static bodies see-through), a copy of the colour image into a host-visible buffer, and a
  * wait on our own fence. Bodies and contacts are never looped over on the host, except to
  * read AABBs for the automatic camera and to know whether a plane exists; shapes are, to
- * keep a mesh per hull shape (render_hulls.c). */
+ * keep a mesh per hull and mesh shape (render_hulls.c). */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -113,6 +114,7 @@ void tr_destroy(tr_renderer* r)
     /* Every frame waits for its fence before returning, so nothing is in flight here. */
     if (r->dev.device) {
         tr_pipelines_destroy(r);
+        tr_mesh_lists_destroy(r);
         tr_hulls_destroy(r);
         tr_gpu_destroy(r);
     }
@@ -190,9 +192,7 @@ typedef struct tr_frame {
 
 static void push(const tr_renderer* r, const tr_push* p)
 {
-    vkCmdPushConstants(r->cb, r->pipeline_layout,
-                       VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                       sizeof *p, p);
+    vkCmdPushConstants(r->cb, r->pipeline_layout, TR_PUSH_STAGES, 0, sizeof *p, p);
 }
 
 static void draw_mesh(const tr_renderer* r, tr_push* p, uint32_t type, const tr_mesh* m,
@@ -203,8 +203,22 @@ static void draw_mesh(const tr_renderer* r, tr_push* p, uint32_t type, const tr_
     vkCmdDrawIndexed(r->cb, m->index_count, slots, m->first_index, m->vertex_offset, 0);
 }
 
+/* Each mesh shape's mesh once per body of that shape: the instances its indirect draw
+ * got from the list pass, pc.mode.w where its list starts. */
+static void draw_mesh_shapes(const tr_renderer* r, tr_push* p)
+{
+    const VkDeviceSize stride = sizeof(VkDrawIndexedIndirectCommand);
+    p->mode[0] = TB_GPU_SHAPE_MESH;
+    for (uint32_t i = 0; i < r->mesh_draw_count; i++) {
+        p->mode[3] = i * r->mesh_capacity;
+        push(r, p);
+        vkCmdDrawIndexedIndirect(r->cb, r->mesh_commands.buffer, i * stride, 1, (uint32_t)stride);
+    }
+}
+
 /* Spheres, boxes and each hull shape's mesh, every body slot an instance of each (the
- * shaders hide the slots that are not theirs), with the bound mesh pipeline. */
+ * shaders hide the slots that are not theirs), then the mesh shapes, with the bound mesh
+ * pipeline. */
 static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
 {
     VkCommandBuffer cb = r->cb;
@@ -215,11 +229,12 @@ static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
     draw_mesh(r, p, TB_GPU_SHAPE_BOX, &r->cube, slots);
     p->mode[0] = TB_GPU_SHAPE_HULL;
     for (uint32_t i = 0; i < r->hull_draw_count; i++) {
-        const tr_hull_draw* h = &r->hull_draws[i];
+        const tr_shape_draw* h = &r->hull_draws[i];
         p->mode[3] = h->shape_slot;
         push(r, p);
         vkCmdDrawIndexed(cb, h->index_count, slots, h->first_index, h->vertex_offset, 0);
     }
+    draw_mesh_shapes(r, p);
 }
 
 /* The contact overlay after the opaque scene, depth-tested: one instance per manifold. */
@@ -284,15 +299,17 @@ static tb_result record(tr_renderer* r, const tr_view* v, const tr_frame* f)
     };
     tb_result res = tr_vk(r, vkBeginCommandBuffer(cb, &begin), "vkBeginCommandBuffer");
     if (res) return res;
-    /* The world's compute and transfer writes before our reads; and the last frame's copy
-     * into the read-back buffer before this frame's. */
+    /* The world's compute and transfer writes before our reads (the mesh list pass's
+     * included); and the last frame's copy into the read-back buffer before this frame's. */
     memory_barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                    VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_VERTEX_INPUT_BIT |
-                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT |
                    VK_ACCESS_INDEX_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
                    VK_ACCESS_TRANSFER_WRITE_BIT);
+    tr_mesh_lists_record(r, f->slots);
     VkClearValue clears[2] = {
         { .color = { { TR_SKY_R / 255.0f, TR_SKY_G / 255.0f, TR_SKY_B / 255.0f, 1.0f } } },
         { .depthStencil = { 1.0f, 0 } },
@@ -316,9 +333,10 @@ static tb_result record(tr_renderer* r, const tr_view* v, const tr_frame* f)
                            r->readback.buffer, 1, &region);
     memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                    VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-    /* The world's next step overwrites what the vertex shaders read: make it wait. */
-    memory_barrier(cb, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT, 0,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
+    /* The world's next step overwrites what the vertex shaders and the list pass read: make
+     * it wait. */
+    memory_barrier(cb, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                   0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
     return tr_vk(r, vkEndCommandBuffer(cb), "vkEndCommandBuffer");
 }
 
@@ -368,6 +386,7 @@ tb_result tr_render(tr_renderer* r)
     if (res) return tr_fail(r, res, "tb_world_vulkan_bodies: %s", tb_world_last_error(r->world));
     res = tr_bind_bodies(r, &bodies);
     if (!res) res = tr_hulls_update(r, &bodies);
+    if (!res) res = tr_mesh_lists_prepare(r, bodies.slots);
     if (res) return res;
     tr_frame frame = { .slots = bodies.slots };
     if (r->options.show_contacts) res = prepare_contacts(r, &frame);

@@ -1,4 +1,5 @@
-/* Convex hull shapes: their meshes, built on the host from the public API.
+/* Convex hull shapes: their meshes, built on the host from the public API; and the
+ * upkeep of every shape's own mesh, triangle-mesh shapes' (render_meshes.c) included.
  *
  * A hull body reads its shape slot from the world's body arrays (body_info.x), as every
  * body draw does; the hull's geometry is not in the arrays the renderer binds, so each hull
@@ -206,17 +207,19 @@ uint32_t tr_hull_triangles(const tb_vec3* points, uint32_t count, uint32_t** out
     return triangles;
 }
 
-/* ---- the renderer's hull meshes ----------------------------------------------------- */
+/* ---- the renderer's hull and triangle-mesh shapes' meshes --------------------------- */
 
-typedef struct hull_mesh {
+/* A hull or triangle-mesh shape's flat-shaded mesh, three vertices per triangle. */
+typedef struct shape_mesh {
     uint32_t slot;
+    tb_shape_type type;
     tr_vertex* vertices;
     uint32_t vertex_count;
-} hull_mesh;
+} shape_mesh;
 
 /* One flat-shaded mesh for the hull `id`: three vertices per triangle, the triangle's
  * normal on each. */
-static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, hull_mesh* out)
+static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, shape_mesh* out)
 {
     uint32_t count = 0;
     tb_result res = tb_shape_get_hull_vertices(r->world, id, NULL, 0, &count);
@@ -233,20 +236,9 @@ static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, hull_mesh* out)
     uint32_t n = tr_hull_triangles(points, count, &tris);
     out->vertices = n ? malloc(3 * (size_t)n * sizeof *out->vertices) : NULL;
     out->vertex_count = out->vertices ? 3 * n : 0;
-    for (uint32_t t = 0; t < n && out->vertices; t++) {
-        const tb_vec3* c[3] = { &points[tris[3 * t]], &points[tris[3 * t + 1]],
-                                &points[tris[3 * t + 2]] };
-        double e1[3] = { c[1]->x - c[0]->x, c[1]->y - c[0]->y, c[1]->z - c[0]->z };
-        double e2[3] = { c[2]->x - c[0]->x, c[2]->y - c[0]->y, c[2]->z - c[0]->z };
-        double nrm[3];
-        tr_cross3(e1, e2, nrm);
-        double len = sqrt(tr_dot3(nrm, nrm));
-        for (int k = 0; k < 3; k++) {
-            tr_vertex* v = &out->vertices[3 * t + k];
-            v->position[0] = c[k]->x; v->position[1] = c[k]->y; v->position[2] = c[k]->z;
-            for (int i = 0; i < 3; i++) v->normal[i] = len > 0 ? (float)(nrm[i] / len) : 0.0f;
-        }
-    }
+    for (uint32_t t = 0; t < n && out->vertices; t++)
+        tr_flat_triangle(&points[tris[3 * t]], &points[tris[3 * t + 1]],
+                         &points[tris[3 * t + 2]], &out->vertices[3 * t]);
     free(tris);
     free(points);
     if (n && !out->vertices)
@@ -273,49 +265,85 @@ static tb_result grow_slot_table(tr_renderer* r, uint32_t slots)
     return TB_OK;
 }
 
-/* New vertex and index buffers: the unit meshes as they are, then the hull meshes (three
- * vertices and indices 0, 1, 2, ... per triangle); one draw per hull shape. The old buffers
- * go (no frame is in flight: every frame waits for its fence). */
-static tb_result upload(tr_renderer* r, hull_mesh* meshes, uint32_t count)
+/* Room for `count` draws of each kind, the old draws gone; the mesh lists follow. */
+static tb_result reset_draws(tr_renderer* r, uint32_t count)
+{
+    free(r->hull_draws);
+    free(r->mesh_draws);
+    r->hull_draw_count = r->mesh_draw_count = 0;
+    r->hull_draws = malloc((count ? count : 1) * sizeof *r->hull_draws);
+    r->mesh_draws = malloc((count ? count : 1) * sizeof *r->mesh_draws);
+    r->mesh_lists_stale = 1;
+    if (!r->hull_draws || !r->mesh_draws)
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for shape draws");
+    return TB_OK;
+}
+
+/* Each shape's mesh into the new buffers after the unit meshes, and its draw. */
+static void place_meshes(tr_renderer* r, const shape_mesh* meshes, uint32_t count,
+                         tr_vertex* v, uint32_t unit_vertices, uint32_t unit_indices)
+{
+    uint32_t first = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        if (!meshes[i].vertex_count) continue;
+        memcpy(v + unit_vertices + first, meshes[i].vertices,
+               (size_t)meshes[i].vertex_count * sizeof *v);
+        tr_shape_draw d = { meshes[i].slot, unit_indices + first, meshes[i].vertex_count,
+                            (int32_t)unit_vertices };
+        if (meshes[i].type == TB_SHAPE_MESH) r->mesh_draws[r->mesh_draw_count++] = d;
+        else r->hull_draws[r->hull_draw_count++] = d;
+        first += meshes[i].vertex_count;
+    }
+}
+
+/* New vertex and index buffers: the unit meshes as they are, then the shapes' meshes (three
+ * vertices and indices 0, 1, 2, ... per triangle); one draw per shape. The old buffers go
+ * (no frame is in flight: every frame waits for its fence). */
+static tb_result upload(tr_renderer* r, shape_mesh* meshes, uint32_t count)
 {
     const uint32_t unit_vertices = TR_SPHERE_VERTICES + TR_CUBE_VERTICES;
     const uint32_t unit_indices = TR_SPHERE_INDICES + TR_CUBE_INDICES;
-    uint32_t total = 0;
+    uint64_t total = 0;
     for (uint32_t i = 0; i < count; i++) total += meshes[i].vertex_count;
-    free(r->hull_draws);
-    r->hull_draws = NULL;
-    r->hull_draw_count = 0;
-    r->hull_draws = malloc((count ? count : 1) * sizeof *r->hull_draws);
-    if (!r->hull_draws) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for hulls");
+    /* Draws take 32-bit index counts and offsets. */
+    if (total > UINT32_MAX - unit_indices)
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "the hull and mesh shapes have %llu "
+                       "triangles; the renderer draws at most %u", (unsigned long long)total / 3,
+                       (UINT32_MAX - unit_indices) / 3);
+    tb_result res = reset_draws(r, count);
     tr_buffer vertices = { 0 }, indices = { 0 };
-    tb_result res = tr_host_buffer(r, (VkDeviceSize)(unit_vertices + total) * sizeof(tr_vertex),
+    if (!res) res = tr_host_buffer(r, (unit_vertices + total) * sizeof(tr_vertex),
                                    VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &vertices);
-    if (!res) res = tr_host_buffer(r, (VkDeviceSize)(unit_indices + total) * sizeof(uint32_t),
+    if (!res) res = tr_host_buffer(r, (unit_indices + total) * sizeof(uint32_t),
                                    VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &indices);
     if (res) {
         tr_buffer_destroy(r, &vertices);
         tr_buffer_destroy(r, &indices);
         return res;
     }
-    tr_vertex* v = vertices.mapped;
     uint32_t* idx = indices.mapped;
-    memcpy(v, r->vertices.mapped, unit_vertices * sizeof *v);
+    memcpy(vertices.mapped, r->vertices.mapped, unit_vertices * sizeof(tr_vertex));
     memcpy(idx, r->indices.mapped, unit_indices * sizeof *idx);
     for (uint32_t i = 0; i < total; i++) idx[unit_indices + i] = i;
-    uint32_t first = 0;
-    for (uint32_t i = 0; i < count; i++) {
-        if (!meshes[i].vertex_count) continue;
-        memcpy(v + unit_vertices + first, meshes[i].vertices, meshes[i].vertex_count * sizeof *v);
-        r->hull_draws[r->hull_draw_count++] = (tr_hull_draw){
-            meshes[i].slot, unit_indices + first, meshes[i].vertex_count,
-            (int32_t)unit_vertices };
-        first += meshes[i].vertex_count;
-    }
+    place_meshes(r, meshes, count, vertices.mapped, unit_vertices, unit_indices);
     tr_buffer_destroy(r, &r->vertices);
     tr_buffer_destroy(r, &r->indices);
     r->vertices = vertices;
     r->indices = indices;
     return TB_OK;
+}
+
+/* The mesh of shape `id` in slot `s`, if it is a hull or a triangle mesh: *made says. */
+static tb_result shape_mesh_of(tr_renderer* r, tb_shape_id id, uint32_t s, shape_mesh* out,
+                               int* made)
+{
+    *made = 0;
+    if (tb_shape_get_type(r->world, id, &out->type) != TB_OK) return TB_OK;
+    if (out->type != TB_SHAPE_HULL && out->type != TB_SHAPE_MESH) return TB_OK;
+    out->slot = s;
+    *made = 1;
+    if (out->type == TB_SHAPE_HULL) return hull_mesh_of(r, id, out);
+    return tr_mesh_shape_vertices(r, id, &out->vertices, &out->vertex_count);
 }
 
 static tb_result rescan(tr_renderer* r, uint32_t slots, uint32_t live)
@@ -324,23 +352,20 @@ static tb_result rescan(tr_renderer* r, uint32_t slots, uint32_t live)
     if (res) return res;
     memset(r->shape_ids, 0, slots * sizeof *r->shape_ids);
     tb_shape_id* live_ids = malloc((live ? live : 1) * sizeof *live_ids);
-    hull_mesh* meshes = calloc(live ? live : 1, sizeof *meshes);
+    shape_mesh* meshes = calloc(live ? live : 1, sizeof *meshes);
     if (!live_ids || !meshes) {
         free(live_ids);
         free(meshes);
-        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for hulls");
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for shape meshes");
     }
     uint32_t found = tb_world_shape_ids(r->world, live_ids, live), count = 0;
     for (uint32_t i = 0; i < found && !res; i++) {
         uint32_t s = live_ids[i].index1 - 1;
         if (s >= slots) continue;   /* made after the bodies' arrays were read: next frame */
         r->shape_ids[s] = live_ids[i];
-        tb_shape_type type;
-        if (tb_shape_get_type(r->world, live_ids[i], &type) != TB_OK || type != TB_SHAPE_HULL)
-            continue;
-        meshes[count].slot = s;
-        res = hull_mesh_of(r, live_ids[i], &meshes[count]);
-        count++;
+        int made;
+        res = shape_mesh_of(r, live_ids[i], s, &meshes[count], &made);
+        count += made;
     }
     if (!res) res = upload(r, meshes, count);
     for (uint32_t i = 0; i < count; i++) free(meshes[i].vertices);
@@ -366,9 +391,11 @@ tb_result tr_hulls_update(tr_renderer* r, const tb_vulkan_bodies* bodies)
 void tr_hulls_destroy(tr_renderer* r)
 {
     free(r->hull_draws);
+    free(r->mesh_draws);
     free(r->shape_ids);
     r->hull_draws = NULL;
-    r->hull_draw_count = 0;
+    r->mesh_draws = NULL;
+    r->hull_draw_count = r->mesh_draw_count = 0;
     r->shape_ids = NULL;
     r->shape_capacity = 0;
     r->hulls_scanned = 0;

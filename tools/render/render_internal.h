@@ -14,6 +14,10 @@
 
 #include "render_layout.h" /* tr_push and TR_FLAG_*, shared with the shaders */
 
+/* Every stage sees the one push constant block (mesh_lists.comp too). */
+#define TR_PUSH_STAGES (VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT | \
+                        VK_SHADER_STAGE_COMPUTE_BIT)
+
 /* Double-precision 3-vectors for the host-side geometry (camera framing, hull meshes). */
 static inline void tr_sub3(const double* a, const double* b, double out[3])
 {
@@ -50,17 +54,18 @@ typedef struct tr_mesh {
     int32_t vertex_offset;
 } tr_mesh;
 
-/* A vertex of the unit meshes and of the hull meshes. */
+/* A vertex of the unit meshes and of the hull and triangle-mesh shapes' meshes. */
 typedef struct tr_vertex { float position[3], normal[3]; } tr_vertex;
 
-/* One hull shape's mesh (render_hulls.c), after the unit meshes in the shared vertex and
- * index buffers: drawn from the same bindings (lavapipe at 128-bit vectors crashed, now and
- * then, on draws from a second vertex buffer bound in the same render pass). */
-typedef struct tr_hull_draw {
+/* One hull or triangle-mesh shape's mesh (render_hulls.c), after the unit meshes in the
+ * shared vertex and index buffers: drawn from the same bindings (lavapipe at 128-bit
+ * vectors crashed, now and then, on draws from a second vertex buffer bound in the same
+ * render pass). */
+typedef struct tr_shape_draw {
     uint32_t shape_slot;
     uint32_t first_index, index_count;
     int32_t vertex_offset;
-} tr_hull_draw;
+} tr_shape_draw;
 
 /* What the host knows of the scene for one frame. */
 typedef struct tr_scene {
@@ -99,13 +104,23 @@ struct tr_renderer {
     tr_buffer vertices, indices;
     tr_mesh sphere, cube;
 
-    /* Hull shapes (render_hulls.c): a mesh per hull shape, and what the last scan saw. */
-    tr_hull_draw* hull_draws;
+    /* Hull and triangle-mesh shapes (render_hulls.c): a mesh per shape, and what the last
+     * scan saw. */
+    tr_shape_draw* hull_draws;
     uint32_t hull_draw_count;
+    tr_shape_draw* mesh_draws;
+    uint32_t mesh_draw_count;
     tb_shape_id* shape_ids;        /* per shape slot; index1 0: no live shape */
     uint32_t shape_capacity;
     int hulls_scanned;
     uint32_t scan_slots, scan_live;
+
+    /* The bodies of each mesh shape, listed on the GPU each frame (render_meshes.c). */
+    int mesh_lists_stale;         /* mesh_draws changed since the tables below were written */
+    tr_buffer mesh_of_shape;      /* uint per shape slot: its mesh draw, or TR_NO_MESH */
+    tr_buffer mesh_commands;      /* an indexed indirect draw per mesh draw */
+    tr_buffer mesh_instances;     /* per mesh draw, mesh_capacity body slots */
+    uint32_t mesh_capacity;
 
     VkDescriptorSetLayout set_layout;
     VkDescriptorPool descriptor_pool;
@@ -120,6 +135,7 @@ struct tr_renderer {
     VkPipelineLayout pipeline_layout;
     VkPipeline mesh_pipeline, plane_pipeline, line_pipeline, contact_pipeline;
     VkPipeline static_pipeline;   /* see-through static bodies: blended, no depth writes */
+    VkPipeline mesh_list_pipeline; /* compute: the bodies of each mesh shape */
 
     tr_camera last_camera;
     int has_frame;
@@ -150,15 +166,28 @@ uint32_t tr_cube_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_co
 #define TR_CUBE_VERTICES 24
 #define TR_CUBE_INDICES 36
 
-/* render_hulls.c: hull meshes */
+/* render_hulls.c: hull meshes, and the meshes of hull and triangle-mesh shapes */
 /// Triangles (counter-clockwise seen from outside) of the convex hull of `points`, as
 /// point indices in a malloc'd *out (3 per triangle); 0 when the points span no volume.
 uint32_t tr_hull_triangles(const tb_vec3* points, uint32_t count, uint32_t** out);
-/// Bring the hull meshes up to date with the world's shapes.
+/// Bring the hull and triangle-mesh shapes' meshes up to date with the world's shapes.
 tb_result tr_hulls_update(tr_renderer* r, const tb_vulkan_bodies* bodies);
 void tr_hulls_destroy(tr_renderer* r);
 
-/* render_pipelines.c: descriptor set and the five pipelines */
+/* render_meshes.c: triangle-mesh shapes */
+/// The flat-shaded triangle a, b, c: three vertices, each with the normal of the side from
+/// which they run counter-clockwise (zero for a triangle of no area).
+void tr_flat_triangle(const tb_vec3* a, const tb_vec3* b, const tb_vec3* c, tr_vertex out[3]);
+/// A mesh shape's triangles, flat shaded, in a malloc'd *out (3 vertices per triangle).
+tb_result tr_mesh_shape_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** out,
+                                 uint32_t* vertex_count);
+/// Size and fill the mesh draws' tables for a frame of `slots` body slots.
+tb_result tr_mesh_lists_prepare(tr_renderer* r, uint32_t slots);
+/// Record the pass that lists each mesh shape's bodies (outside the render pass).
+void tr_mesh_lists_record(tr_renderer* r, uint32_t slots);
+void tr_mesh_lists_destroy(tr_renderer* r);
+
+/* render_pipelines.c: descriptor set, the five graphics pipelines and the compute one */
 tb_result tr_pipelines_create(tr_renderer* r);
 tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* bodies);
 tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* contacts);

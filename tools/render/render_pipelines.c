@@ -1,7 +1,8 @@
-/* The descriptor set that shows the world's body arrays (and its contact manifolds) to the
- * shaders, and the five graphics pipelines: instanced meshes, the same see-through (static
- * bodies), plane quads with grid, AABB lines, contact lines. Viewport and scissor are dynamic so that a size change keeps
- * the pipelines. */
+/* The descriptor set that shows the world's body arrays (and its contact manifolds and the
+ * mesh shapes' body lists) to the shaders, the five graphics pipelines: instanced meshes,
+ * the same see-through (static bodies), plane quads with grid, AABB lines, contact lines;
+ * and the compute pipeline that lists the bodies of each mesh shape. Viewport and scissor
+ * are dynamic so that a size change keeps the pipelines. */
 #include <stddef.h>
 #include <string.h>
 
@@ -16,23 +17,28 @@ static const uint32_t BODY_BINDINGS[] = {
 };
 #define BODY_BINDING_COUNT (sizeof BODY_BINDINGS / sizeof BODY_BINDINGS[0])
 /* Plus the manifolds, written only once contacts are shown: until then no bound pipeline
- * uses the binding, so it may stay unwritten. */
-#define BINDING_COUNT (BODY_BINDING_COUNT + 1)
+ * uses the binding, so it may stay unwritten; and the mesh lists (render_meshes.c). */
+static const uint32_t OWN_BINDINGS[] = {
+    TR_BIND_MANIFOLDS, TR_BIND_MESH_OF_SHAPE, TR_BIND_MESH_COMMANDS, TR_BIND_MESH_INSTANCES,
+};
+#define BINDING_COUNT (BODY_BINDING_COUNT + sizeof OWN_BINDINGS / sizeof OWN_BINDINGS[0])
 
-static VkDescriptorSetLayoutBinding vertex_storage(uint32_t binding)
+/* The vertex shaders read every binding; mesh_lists.comp some body arrays and the lists. */
+static VkDescriptorSetLayoutBinding storage(uint32_t binding)
 {
     return (VkDescriptorSetLayoutBinding){
         .binding = binding, .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
-        .descriptorCount = 1, .stageFlags = VK_SHADER_STAGE_VERTEX_BIT,
+        .descriptorCount = 1,
+        .stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_COMPUTE_BIT,
     };
 }
 
 static tb_result create_layouts(tr_renderer* r)
 {
     VkDescriptorSetLayoutBinding bindings[BINDING_COUNT];
-    for (uint32_t i = 0; i < BODY_BINDING_COUNT; i++)
-        bindings[i] = vertex_storage(BODY_BINDINGS[i]);
-    bindings[BODY_BINDING_COUNT] = vertex_storage(TR_BIND_MANIFOLDS);
+    for (uint32_t i = 0; i < BINDING_COUNT; i++)
+        bindings[i] = storage(i < BODY_BINDING_COUNT ? BODY_BINDINGS[i]
+                                                     : OWN_BINDINGS[i - BODY_BINDING_COUNT]);
     VkDescriptorSetLayoutCreateInfo set_info = {
         .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
         .bindingCount = BINDING_COUNT, .pBindings = bindings,
@@ -41,10 +47,7 @@ static tb_result create_layouts(tr_renderer* r)
     tb_result res = tr_vk(r, vkCreateDescriptorSetLayout(d, &set_info, NULL, &r->set_layout),
                           "vkCreateDescriptorSetLayout");
     if (res) return res;
-    VkPushConstantRange push = {
-        .stageFlags = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
-        .offset = 0, .size = sizeof(tr_push),
-    };
+    VkPushConstantRange push = { .stageFlags = TR_PUSH_STAGES, .offset = 0, .size = sizeof(tr_push) };
     VkPipelineLayoutCreateInfo layout_info = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
         .setLayoutCount = 1, .pSetLayouts = &r->set_layout,
@@ -231,6 +234,23 @@ static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipel
     return res;
 }
 
+static tb_result create_compute(tr_renderer* r, const char* name, VkPipeline* out)
+{
+    VkShaderModule module = VK_NULL_HANDLE;
+    tb_result res = shader_module(r, name, &module);
+    VkComputePipelineCreateInfo info = {
+        .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+        .stage = { .sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                   .stage = VK_SHADER_STAGE_COMPUTE_BIT, .module = module, .pName = "main" },
+        .layout = r->pipeline_layout,
+    };
+    if (!res)
+        res = tr_vk(r, vkCreateComputePipelines(r->dev.device, VK_NULL_HANDLE, 1, &info, NULL,
+                                                out), "vkCreateComputePipelines");
+    if (module) vkDestroyShaderModule(r->dev.device, module, NULL);
+    return res;
+}
+
 tb_result tr_pipelines_create(tr_renderer* r)
 {
     static const pipeline_desc mesh = { "mesh.vert", "mesh.frag",
@@ -250,15 +270,17 @@ tb_result tr_pipelines_create(tr_renderer* r)
     if (!res) res = create_pipeline(r, &line, &r->line_pipeline);
     if (!res) res = create_pipeline(r, &contact, &r->contact_pipeline);
     if (!res) res = create_pipeline(r, &see_through, &r->static_pipeline);
+    if (!res) res = create_compute(r, "mesh_lists.comp", &r->mesh_list_pipeline);
     return res;
 }
 
 void tr_pipelines_destroy(tr_renderer* r)
 {
     VkDevice d = r->dev.device;
-    VkPipeline* pipelines[5] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
-                                 &r->contact_pipeline, &r->static_pipeline };
-    for (int i = 0; i < 5; i++) {
+    VkPipeline* pipelines[6] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
+                                 &r->contact_pipeline, &r->static_pipeline,
+                                 &r->mesh_list_pipeline };
+    for (int i = 0; i < 6; i++) {
         if (*pipelines[i]) vkDestroyPipeline(d, *pipelines[i], NULL);
         *pipelines[i] = VK_NULL_HANDLE;
     }

@@ -1,6 +1,6 @@
 /* Shared by the renderer's shaders: the world's body arrays (set 0, the world's own
  * binding numbers from layout.h), the push constants, and body colours.
- * Included, never compiled alone (the Makefile compiles *.vert and *.frag only). */
+ * Included, never compiled alone (the Makefile compiles *.vert, *.frag and *.comp only). */
 #include "layout.h"
 #include "render_layout.h"
 

@@ -1,14 +1,17 @@
 #version 450
 /* Instanced body meshes, one instance per body slot: a unit sphere or box scaled by the
  * shape, or one hull shape's own mesh (pc.mode.w its shape slot); other shapes and dead
- * slots hidden. With TR_FLAG_SEE_THROUGH, static bodies are split between this draw and a
+ * slots hidden. A triangle-mesh shape's mesh is drawn once per body of that shape only:
+ * its instances are the body slots mesh_lists.comp listed (pc.mode.w where they start). With TR_FLAG_SEE_THROUGH, static bodies are split between this draw and a
  * see-through one (TR_FLAG_STATIC_PASS, static bodies only) in mesh.frag. */
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
 layout(location = 0) in vec3 in_position;   /* unit mesh (radius 1 or half extents 1), or a
-                                               hull's vertices in its body frame */
+                                               hull's or mesh's vertices in its body frame */
 layout(location = 1) in vec3 in_normal;
+
+layout(set = 0, binding = TR_BIND_MESH_INSTANCES, std430) readonly buffer MeshInstances { uint mesh_instances[]; };
 
 layout(location = 0) out vec3 out_normal;
 layout(location = 1) flat out vec3 out_color;
@@ -17,7 +20,8 @@ layout(location = 3) flat out uint out_static;
 
 void main()
 {
-    uint slot = uint(gl_InstanceIndex);
+    uint slot = pc.mode.x == TB_GPU_SHAPE_MESH ? mesh_instances[pc.mode.w + uint(gl_InstanceIndex)]
+                                               : uint(gl_InstanceIndex);
     out_normal = vec3(0.0);
     out_color = vec3(0.0);
     out_world = vec3(0.0);
@@ -36,7 +40,8 @@ void main()
                : type == TB_GPU_SHAPE_BOX ? shape.params.xyz : vec3(1.0);
     vec4 q = body_rot[slot];
     vec3 world = body_pos[slot].xyz + quat_rotate(q, in_position * scale);
-    /* Box and hull normals are per face and sphere scaling is uniform: rotating is enough. */
+    /* Box, hull and mesh normals are per face and sphere scaling is uniform: rotating is
+     * enough. */
     out_normal = quat_rotate(q, in_normal);
     out_color = body_color(slot, type);
     out_world = world;

@@ -33,6 +33,18 @@
  * address): past the world's bindings, so the body arrays keep the world's numbers. */
 #define TR_BIND_MANIFOLDS TB_BIND_COUNT
 
+/* Triangle-mesh shapes (mesh_lists.comp, mesh.vert): each frame a compute pass lists the
+ * bodies of every mesh shape for that shape's indirect draw, since a mesh is too large to
+ * draw once per body slot as the hulls are. Bindings past the manifolds'. */
+#define TR_BIND_MESH_OF_SHAPE  (TB_BIND_COUNT + 1) /* uint per shape slot: its mesh draw */
+#define TR_BIND_MESH_COMMANDS  (TB_BIND_COUNT + 2) /* VkDrawIndexedIndirectCommand per mesh
+                                                      draw, as 5 uints (instance count 2nd) */
+#define TR_BIND_MESH_INSTANCES (TB_BIND_COUNT + 3) /* per mesh draw, a list of body slots
+                                                      with room for every body slot */
+#define TR_NO_MESH             TR_U(0xffffffff)   /* a shape slot that is no mesh shape */
+#define TR_MESH_COMMAND_UINTS  5
+#define TR_MESH_LIST_GROUP     64                 /* body slots per workgroup */
+
 /* Contact overlay (contacts.vert). One instance per manifold, LINE_LIST: first the normals
  * of its TB_MAX_MANIFOLD_POINTS points (2 vertices each), then their crosses (3 axis-aligned
  * segments, 6 vertices each), so a point's cross is drawn over the normals. */
@@ -66,9 +78,11 @@ TR_STRUCT(tr_push) {
     TR_VEC4(target);      /* xyz point looked at, w speed that maps to full red */
     TR_VEC4(light);       /* xyz unit direction towards the light, w height of the default grid */
     TR_UVEC4(mode);       /* x shape type drawn, y TR_COLOR_*, z TR_FLAG_* and opacity,
-                             w: hull draws, the shape slot drawn; contact overlay, the first
-                             manifold of the last step (its index in the manifold buffer,
-                             whose halves alternate by step parity) */
+                             w: hull draws, the shape slot drawn; mesh draws, where their
+                             body list starts; contact overlay, the first manifold of the
+                             last step (its index in the manifold buffer, whose halves
+                             alternate by step parity). mesh_lists.comp: x body slots, y
+                             room per body list, z shape slots */
 };
 
 #endif
