@@ -1,10 +1,9 @@
 /* The mesh BVH: median splits on the host, depth-first nodes with skip indices, boxes
  * quantized outward to 16 bits (see bvh.h). */
 #include "geom/bvh.h"
+#include "geom/report.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,17 +19,6 @@ typedef struct build {
     double scale[3];          /* quantization steps per metre, per axis */
     uint32_t next;            /* next free node */
 } build;
-
-static int fail(char* error, size_t size, const char* fmt, ...)
-{
-    if (error && size) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(error, size, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 void tb_bvh_steps_per_metre(const tb_bvh* bvh, double scale[3])
 {
@@ -140,17 +128,17 @@ static int check_input(const float* xyz, uint32_t vertex_count, const uint32_t* 
                        uint32_t triangle_count, char* error, size_t error_size)
 {
     if (!xyz || !indices || triangle_count == 0)
-        return fail(error, error_size, "a mesh needs vertices and at least one triangle");
+        return tb_geom_fail(error, error_size, "a mesh needs vertices and at least one triangle");
     if (triangle_count > TB_BVH_MAX_TRIANGLES)
-        return fail(error, error_size, "a mesh has at most %u triangles, not %u",
+        return tb_geom_fail(error, error_size, "a mesh has at most %u triangles, not %u",
                     (unsigned)TB_BVH_MAX_TRIANGLES, triangle_count);
     for (uint32_t v = 0; v < vertex_count; v++)
         for (int a = 0; a < 3; a++)
             if (!isfinite(xyz[3 * (size_t)v + a]))
-                return fail(error, error_size, "vertex %u is not finite", v);
+                return tb_geom_fail(error, error_size, "vertex %u is not finite", v);
     for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
         if (indices[i] >= vertex_count)
-            return fail(error, error_size, "triangle %u uses vertex %u of %u",
+            return tb_geom_fail(error, error_size, "triangle %u uses vertex %u of %u",
                         (unsigned)(i / 3), indices[i], vertex_count);
     return 0;
 }
@@ -201,7 +189,7 @@ int tb_bvh_build(const float* xyz, uint32_t vertex_count, const uint32_t* indice
     free(b.order);
     if (!ok) {
         free(bvh.nodes);
-        return fail(error, error_size, "no host memory for a BVH of %u triangles", triangle_count);
+        return tb_geom_fail(error, error_size, "no host memory for a BVH of %u triangles", triangle_count);
     }
     *out = bvh;
     return 0;

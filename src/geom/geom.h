@@ -7,6 +7,7 @@
  *                 nodes with skip indices, boxes quantized to 16 bits (bvh.c)
  *   heightfield.h heightfields: a grid of heights cut into triangles, holes, active edges
  *                 (the mesh's rule), the GPU image (heightfield.c)
+ *   report.h      what the builders share: a refusal's sentence, floats as GPU bits
  *   mesh.h        triangle meshes: checked copies, active edges and degenerate triangles,
  *                 the BVH, and the GPU image of a mesh shape (mesh.c)
  *

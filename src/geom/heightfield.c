@@ -6,10 +6,9 @@
  * active edges.
  */
 #include "geom/heightfield.h"
+#include "geom/report.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,32 +18,21 @@
 #define MAX_SPAN 2.0e6       /* m, the grid's extent along x or z */
 #define HEADER_UVEC4 (sizeof(tb_gpu_heightfield_header) / sizeof(tb_gpu_uvec4))
 
-static int fail(char* error, size_t size, const char* fmt, ...)
-{
-    if (error && size) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(error, size, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
-
 static int check(const float* heights, uint32_t nx, uint32_t nz, float cx, float cz,
                  char* error, size_t size)
 {
-    if (!heights) return fail(error, size, "heights are NULL");
+    if (!heights) return tb_geom_fail(error, size, "heights are NULL");
     if (nx < 2 || nz < 2 || nx > TB_HEIGHTFIELD_MAX_SAMPLES || nz > TB_HEIGHTFIELD_MAX_SAMPLES)
-        return fail(error, size, "a heightfield needs 2 to %u samples along each side, not "
+        return tb_geom_fail(error, size, "a heightfield needs 2 to %u samples along each side, not "
                     "%u x %u", TB_HEIGHTFIELD_MAX_SAMPLES, nx, nz);
     if (!isfinite(cx) || !isfinite(cz) || !(cx > 0) || !(cz > 0))
-        return fail(error, size, "cell sizes must be finite and > 0, not %g x %g", (double)cx,
+        return tb_geom_fail(error, size, "cell sizes must be finite and > 0, not %g x %g", (double)cx,
                     (double)cz);
     if ((double)cx * (nx - 1) > MAX_SPAN || (double)cz * (nz - 1) > MAX_SPAN)
-        return fail(error, size, "the grid spans more than %g m", MAX_SPAN);
+        return tb_geom_fail(error, size, "the grid spans more than %g m", MAX_SPAN);
     for (size_t i = 0; i < (size_t)nx * nz; i++)
         if (!isfinite(heights[i]) || fabs(heights[i]) > MAX_HEIGHT)
-            return fail(error, size, "height %zu (sample %zu, %zu) is %g: heights must be "
+            return tb_geom_fail(error, size, "height %zu (sample %zu, %zu) is %g: heights must be "
                         "finite and within %g m", i, i % nx, i / nx, (double)heights[i],
                         MAX_HEIGHT);
     return 0;
@@ -94,12 +82,12 @@ int tb_heightfield_build(const float* heights, uint32_t count_x, uint32_t count_
     size_t samples = (size_t)count_x * count_z, cells = (size_t)(count_x - 1) * (count_z - 1);
     tb_heightfield f = { count_x, count_z, cell_x, cell_z, NULL, NULL, 0, { 0 }, { 0 } };
     for (size_t n = 0; holes && n < cells; n++) f.hole_count += holes[n] != 0;
-    if (f.hole_count == cells) return fail(error, error_size, "every cell is a hole");
+    if (f.hole_count == cells) return tb_geom_fail(error, error_size, "every cell is a hole");
     f.heights = malloc(samples * sizeof *f.heights);
     f.cell_flags = malloc(cells * sizeof *f.cell_flags);
     if (!f.heights || !f.cell_flags) {
         tb_heightfield_free(&f);
-        return fail(error, error_size, "no host memory for a heightfield of %zu samples", samples);
+        return tb_geom_fail(error, error_size, "no host memory for a heightfield of %zu samples", samples);
     }
     memcpy(f.heights, heights, samples * sizeof *f.heights);
     float low = heights[0], high = heights[0];
@@ -115,7 +103,7 @@ int tb_heightfield_build(const float* heights, uint32_t count_x, uint32_t count_
     f.hi[1] = high;
     if (flag_cells(&f, holes)) {
         tb_heightfield_free(&f);
-        return fail(error, error_size, "no host memory for the edges of a heightfield of %zu "
+        return tb_geom_fail(error, error_size, "no host memory for the edges of a heightfield of %zu "
                     "cells", cells);
     }
     *out = f;
@@ -142,13 +130,6 @@ size_t tb_heightfield_image_size(const tb_heightfield* f)
     return HEADER_UVEC4 + in_uvec4(samples) + in_uvec4(cells);
 }
 
-static uint32_t float_bits(float x)
-{
-    uint32_t u;
-    memcpy(&u, &x, sizeof u);
-    return u;
-}
-
 void tb_heightfield_pack(const tb_heightfield* f, tb_gpu_uvec4* image)
 {
     size_t samples = (size_t)f->count_x * f->count_z;
@@ -163,7 +144,7 @@ void tb_heightfield_pack(const tb_heightfield* f, tb_gpu_uvec4* image)
     memcpy(image, &h, sizeof h);
     uint32_t* words = (uint32_t*)(image + first_height);
     for (size_t i = 0; i < 4 * in_uvec4(samples); i++)
-        words[i] = i < samples ? float_bits(f->heights[i]) : 0;
+        words[i] = i < samples ? tb_geom_float_bits(f->heights[i]) : 0;
     words = (uint32_t*)(image + first_flags);
     for (size_t n = 0; n < 4 * in_uvec4(cells); n++) words[n] = n < cells ? f->cell_flags[n] : 0;
 }

@@ -8,10 +8,9 @@
  * depend on the mesh only, never on rounding along the way.
  */
 #include "geom/mesh.h"
+#include "geom/report.h"
 
 #include <math.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,17 +22,6 @@
 
 /* Header size in uvec4: the nodes start right after it. */
 #define HEADER_UVEC4 (sizeof(tb_gpu_mesh_header) / sizeof(tb_gpu_uvec4))
-
-static int fail(char* error, size_t size, const char* fmt, ...)
-{
-    if (error && size) {
-        va_list ap;
-        va_start(ap, fmt);
-        vsnprintf(error, size, fmt, ap);
-        va_end(ap);
-    }
-    return -1;
-}
 
 /* ---- input ---------------------------------------------------------------------------- */
 
@@ -49,15 +37,15 @@ static int check_counts(const float* xyz, uint32_t vertex_count, const uint32_t*
                         uint32_t triangle_count, char* error, size_t error_size)
 {
     if (!xyz || !indices)
-        return fail(error, error_size, "a mesh needs its vertices and its triangles' indices, "
+        return tb_geom_fail(error, error_size, "a mesh needs its vertices and its triangles' indices, "
                     "not NULL");
     if (triangle_count == 0)
-        return fail(error, error_size, "a mesh needs at least one triangle");
+        return tb_geom_fail(error, error_size, "a mesh needs at least one triangle");
     if (triangle_count > TB_BVH_MAX_TRIANGLES)
-        return fail(error, error_size, "a mesh has at most %u triangles, not %u",
+        return tb_geom_fail(error, error_size, "a mesh has at most %u triangles, not %u",
                     (unsigned)TB_BVH_MAX_TRIANGLES, triangle_count);
     if (vertex_count > max_vertices(triangle_count))
-        return fail(error, error_size, "a mesh of %u triangles has at most %llu vertices (its "
+        return tb_geom_fail(error, error_size, "a mesh of %u triangles has at most %llu vertices (its "
                     "GPU image is addressed by 32-bit offsets), not %u", triangle_count,
                     (unsigned long long)max_vertices(triangle_count), vertex_count);
     return 0;
@@ -68,16 +56,16 @@ static int check_values(const float* xyz, uint32_t vertex_count, const uint32_t*
 {
     for (uint64_t i = 0; i < 3 * (uint64_t)triangle_count; i++)
         if (indices[i] >= vertex_count)
-            return fail(error, error_size, "triangle %u's index %u is vertex %u, but the mesh "
+            return tb_geom_fail(error, error_size, "triangle %u's index %u is vertex %u, but the mesh "
                         "has %u vertices", (unsigned)(i / 3), (unsigned)(i % 3), indices[i],
                         vertex_count);
     for (uint32_t v = 0; v < vertex_count; v++)
         for (int a = 0; a < 3; a++) {
             float c = xyz[3 * (size_t)v + a];
             if (!isfinite(c))
-                return fail(error, error_size, "vertex %u is not finite", v);
+                return tb_geom_fail(error, error_size, "vertex %u is not finite", v);
             if (fabs(c) > TB_MESH_MAX_COORDINATE)
-                return fail(error, error_size, "vertex %u has a coordinate of %g m, beyond "
+                return tb_geom_fail(error, error_size, "vertex %u has a coordinate of %g m, beyond "
                             "the %g m a mesh vertex may lie from its origin", v, c,
                             TB_MESH_MAX_COORDINATE);
         }
@@ -296,17 +284,17 @@ int tb_mesh_build(const float* xyz, uint32_t vertex_count, const uint32_t* indic
         return -1;
     tb_mesh m = { .vertex_count = vertex_count, .triangle_count = triangle_count };
     if (copy_input(&m, xyz, indices))
-        return fail(error, error_size, "no host memory for a mesh of %u triangles",
+        return tb_geom_fail(error, error_size, "no host memory for a mesh of %u triangles",
                     triangle_count);
     m.degenerate_count = flag_triangles(&m);
     if (m.degenerate_count == triangle_count) {
         free_arrays(&m);
-        return fail(error, error_size, "every triangle of the mesh is degenerate (a repeated "
+        return tb_geom_fail(error, error_size, "every triangle of the mesh is degenerate (a repeated "
                     "vertex or no area), so nothing could touch it");
     }
     if (find_inactive_edges(&m)) {
         free_arrays(&m);
-        return fail(error, error_size, "no host memory for the edges of a mesh of %u "
+        return tb_geom_fail(error, error_size, "no host memory for the edges of a mesh of %u "
                     "triangles", triangle_count);
     }
     if (tb_bvh_build(m.xyz, vertex_count, m.indices, triangle_count, &m.bvh, error,
@@ -333,20 +321,6 @@ size_t tb_mesh_image_size(const tb_mesh* mesh)
            mesh->vertex_count;
 }
 
-static float uint_bits(uint32_t u)
-{
-    float f;
-    memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-static uint32_t float_bits(float f)
-{
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    return u;
-}
-
 static tb_gpu_mesh_header header(const tb_mesh* mesh)
 {
     const tb_bvh* bvh = &mesh->bvh;
@@ -354,10 +328,10 @@ static tb_gpu_mesh_header header(const tb_mesh* mesh)
     tb_bvh_steps_per_metre(bvh, scale);
     uint32_t nodes = (uint32_t)HEADER_UVEC4, triangles = nodes + bvh->node_count;
     tb_gpu_mesh_header h = {
-        .lo = { bvh->lo[0], bvh->lo[1], bvh->lo[2], uint_bits(bvh->node_count) },
+        .lo = { bvh->lo[0], bvh->lo[1], bvh->lo[2], tb_geom_bits_float(bvh->node_count) },
         .scale = { (float)scale[0], (float)scale[1], (float)scale[2],
-                   uint_bits(mesh->triangle_count) },
-        .hi = { bvh->hi[0], bvh->hi[1], bvh->hi[2], uint_bits(mesh->vertex_count) },
+                   tb_geom_bits_float(mesh->triangle_count) },
+        .hi = { bvh->hi[0], bvh->hi[1], bvh->hi[2], tb_geom_bits_float(mesh->vertex_count) },
         .sections = { nodes, triangles, triangles + mesh->triangle_count, 0 },
     };
     return h;
@@ -376,6 +350,6 @@ void tb_mesh_pack(const tb_mesh* mesh, tb_gpu_uvec4* image)
     tb_gpu_uvec4* vertices = image + h.sections.z;
     for (uint32_t v = 0; v < mesh->vertex_count; v++) {
         const float* p = mesh->xyz + 3 * (size_t)v;
-        vertices[v] = (tb_gpu_uvec4){ float_bits(p[0]), float_bits(p[1]), float_bits(p[2]), 0 };
+        vertices[v] = (tb_gpu_uvec4){ tb_geom_float_bits(p[0]), tb_geom_float_bits(p[1]), tb_geom_float_bits(p[2]), 0 };
     }
 }
