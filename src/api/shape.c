@@ -50,6 +50,16 @@ static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
     return s;
 }
 
+/* A shape whose local box [lo, hi] (body frame) need not be centred on the origin. */
+static tb_gpu_shape boxed_shape(uint32_t type, const float lo[3], const float hi[3])
+{
+    tb_gpu_shape s = gpu_shape(type, (tb_vec3){ (hi[0] - lo[0]) / 2, (hi[1] - lo[1]) / 2,
+                                                (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
+    s.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
+                                   (hi[2] + lo[2]) / 2, 0 };
+    return s;
+}
+
 tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float radius,
                                  tb_shape_id* out)
 {
@@ -116,11 +126,7 @@ tb_result tb_shape_create_hull(tb_world* w, const tb_shape_def* def, const tb_ve
     tb_shape_record rec = { .type = TB_SHAPE_HULL, .material = *def, .volume = (float)hull.volume };
     rec.unit_inertia = (tb_vec3){ (float)hull.unit_inertia[0], (float)hull.unit_inertia[1],
                                   (float)hull.unit_inertia[2] };
-    tb_vec3 lo = { hull.aabb_min[0], hull.aabb_min[1], hull.aabb_min[2] };
-    tb_vec3 hi = { hull.aabb_max[0], hull.aabb_max[1], hull.aabb_max[2] };
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_HULL, (tb_vec3){ (hi.x - lo.x) / 2,
-                                 (hi.y - lo.y) / 2, (hi.z - lo.z) / 2 }, (tb_gpu_vec4){ 0 });
-    gpu.aabb_center = (tb_gpu_vec4){ (hi.x + lo.x) / 2, (hi.y + lo.y) / 2, (hi.z + lo.z) / 2, 0 };
+    tb_gpu_shape gpu = boxed_shape(TB_GPU_SHAPE_HULL, hull.aabb_min, hull.aabb_max);
     return add_hull_shape(w, &rec, &gpu, &hull, out);
 }
 
@@ -146,13 +152,8 @@ tb_result tb_shape_create_mesh(tb_world* w, const tb_shape_def* def, const tb_ve
         free(mesh);
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "triangle mesh: %s", error);
     }
-    const float* lo = mesh->bvh.lo;
-    const float* hi = mesh->bvh.hi;
     tb_shape_record rec = { .type = TB_SHAPE_MESH, .material = *def, .mesh = mesh };
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_MESH, (tb_vec3){ (hi[0] - lo[0]) / 2,
-                                 (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
-    gpu.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
-                                     (hi[2] + lo[2]) / 2, 0 };
+    tb_gpu_shape gpu = boxed_shape(TB_GPU_SHAPE_MESH, mesh->bvh.lo, mesh->bvh.hi);
     return tb_shapes_add(w, &rec, &gpu, out);
 }
 
@@ -170,13 +171,8 @@ tb_result tb_shape_create_heightfield(tb_world* w, const tb_shape_def* def, cons
         free(field);
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "heightfield: %s", error);
     }
-    const float* lo = field->lo;
-    const float* hi = field->hi;
     tb_shape_record rec = { .type = TB_SHAPE_HEIGHTFIELD, .material = *def, .heightfield = field };
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_HEIGHTFIELD, (tb_vec3){ (hi[0] - lo[0]) / 2,
-                                 (hi[1] - lo[1]) / 2, (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
-    gpu.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
-                                     (hi[2] + lo[2]) / 2, 0 };
+    tb_gpu_shape gpu = boxed_shape(TB_GPU_SHAPE_HEIGHTFIELD, field->lo, field->hi);
     return tb_shapes_add(w, &rec, &gpu, out);
 }
 
@@ -237,18 +233,25 @@ tb_result tb_shape_get_type(const tb_world* cw, tb_shape_id id, tb_shape_type* o
     return r;
 }
 
-/* A hull shape's record, or an error naming what the id is instead. */
-static const tb_hull* hull_of(tb_world* w, tb_shape_id id, tb_result* r)
+/* The record of a shape of the given type, or an error naming what the id is instead. */
+static const tb_shape_record* record_of(tb_world* w, tb_shape_id id, tb_shape_type type,
+                                        const char* what, tb_result* r)
 {
     uint32_t slot;
     tb_shape_record* s = tb_shape_lookup(w, id, &slot, r);
     if (!s) return NULL;
-    if (s->type != TB_SHAPE_HULL) {
-        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a hull",
-                     id.index1, id.world, id.generation);
+    if (s->type != type) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a %s",
+                     id.index1, id.world, id.generation, what);
         return NULL;
     }
-    return s->hull;
+    return s;
+}
+
+static const tb_hull* hull_of(tb_world* w, tb_shape_id id, tb_result* r)
+{
+    const tb_shape_record* s = record_of(w, id, TB_SHAPE_HULL, "hull", r);
+    return s ? s->hull : NULL;
 }
 
 tb_result tb_shape_get_hull_info(const tb_world* cw, tb_shape_id id, tb_hull_info* out)
@@ -286,18 +289,10 @@ tb_result tb_shape_get_hull_vertices(const tb_world* cw, tb_shape_id id, tb_vec3
     return TB_OK;
 }
 
-/* A mesh shape's record, or an error naming what the id is instead. */
 static const tb_mesh* mesh_of(tb_world* w, tb_shape_id id, tb_result* r)
 {
-    uint32_t slot;
-    tb_shape_record* s = tb_shape_lookup(w, id, &slot, r);
-    if (!s) return NULL;
-    if (s->type != TB_SHAPE_MESH) {
-        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "shape {%u, %u, %u} is not a mesh",
-                     id.index1, id.world, id.generation);
-        return NULL;
-    }
-    return s->mesh;
+    const tb_shape_record* s = record_of(w, id, TB_SHAPE_MESH, "mesh", r);
+    return s ? s->mesh : NULL;
 }
 
 tb_result tb_shape_get_mesh_info(const tb_world* cw, tb_shape_id id, tb_mesh_info* out)
