@@ -126,27 +126,42 @@ uint np_incident_face(np_hull h, vec3 n)
     return face;
 }
 
-// Reference body r (hull hr, face rf) against incident hull hi, i_in_r mapping hi's frame
-// into r's; key carries the reference side and face. Returns the point count.
-uint np_hull_face_contact(np_target t, np_body r, np_hull hr, uint rf, np_hull hi,
-                          np_frame i_in_r, uint key, float margin)
+// An incident polygon for np_face_clip_contact: a face of hull hi (i_in_r mapping hi's
+// frame into the reference's), or a triangle already in the reference's frame (a mesh's,
+// triangle.glsl).
+struct np_incident {
+    bool triangle;
+    np_hull hull;
+    np_frame in_ref;
+    vec3 v0, v1, v2;
+};
+
+// Reference body r (hull hr, face rf) against the incident polygon: a hull's face most
+// anti-parallel to the reference normal (its index joins key), or a triangle; key carries
+// the reference side and face; corners within `tol` of a side count as inside. Returns
+// the point count.
+uint np_face_clip_contact(np_target t, np_body r, np_hull hr, uint rf, np_incident inc,
+                          uint key, float tol, float margin)
 {
     vec4 plane = np_hull_plane(hr, rf);
-    uint inc = np_incident_face(hi, transpose(i_in_r.rot) * plane.xyz);
-    key |= inc << 14u;
     // Two polygons in one array: the clipper reads one half and writes the other.
     vec4 poly[2u * NP_CLIP_MAX];
-    uvec2 face = np_hull_face(hi, inc);
-    uint n = face.y;
-    for (uint k = 0u; k < n; k++)
-        poly[k] = np_clip_corner(np_apply(i_in_r, np_hull_face_vertex(hi, face, k)),
-                                 np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
+    uint n = 3u;
+    if (inc.triangle) {
+        poly[0] = np_clip_corner(inc.v0, np_clip_feature(NP_CLIP_INCIDENT_VERTEX, 0u, 0u), 0u);
+        poly[1] = np_clip_corner(inc.v1, np_clip_feature(NP_CLIP_INCIDENT_VERTEX, 1u, 0u), 1u);
+        poly[2] = np_clip_corner(inc.v2, np_clip_feature(NP_CLIP_INCIDENT_VERTEX, 2u, 0u), 2u);
+    } else {
+        uint face_index = np_incident_face(inc.hull, transpose(inc.in_ref.rot) * plane.xyz);
+        key |= face_index << 14u;
+        uvec2 face = np_hull_face(inc.hull, face_index);
+        n = face.y;
+        for (uint k = 0u; k < n; k++)
+            poly[k] = np_clip_corner(np_apply(inc.in_ref, np_hull_face_vertex(inc.hull, face, k)),
+                                     np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
+    }
 
     uvec2 ref = np_hull_face(hr, rf);
-    // Corners within rounding of a side count as inside, so where corners of equal faces
-    // meet the incident vertex wins every time, not a crossing a rounding away from it.
-    float tol = 1.0e-5 * (length(np_hull_face_vertex(hr, ref, 0u)) + length(i_in_r.pos)) +
-                1.0e-6 * (length(r.pos) + 1.0);
     uint from = 0u, to = NP_CLIP_MAX;
     for (uint s = 0u; s < ref.y && n > 0u; s++) {
         vec4 side = np_clip_side(hr, ref, s, plane.xyz);
@@ -202,6 +217,24 @@ uint np_hull_face_contact(np_target t, np_body r, np_hull hr, uint rf, np_hull h
         count++;
     }
     return count;
+}
+
+// Reference body r (hull hr, face rf) against incident hull hi, i_in_r mapping hi's frame
+// into r's; key carries the reference side and face. Returns the point count.
+uint np_hull_face_contact(np_target t, np_body r, np_hull hr, uint rf, np_hull hi,
+                          np_frame i_in_r, uint key, float margin)
+{
+    np_incident inc;
+    inc.triangle = false;
+    inc.hull = hi;
+    inc.in_ref = i_in_r;
+    inc.v0 = inc.v1 = inc.v2 = vec3(0.0);
+    // Corners within rounding of a side count as inside, so where corners of equal faces
+    // meet the incident vertex wins every time, not a crossing a rounding away from it.
+    float tol = 1.0e-5 * (length(np_hull_face_vertex(hr, np_hull_face(hr, rf), 0u)) +
+                          length(i_in_r.pos)) +
+                1.0e-6 * (length(r.pos) + 1.0);
+    return np_face_clip_contact(t, r, hr, rf, inc, key, tol, margin);
 }
 
 // ---- edge contact -------------------------------------------------------------------------

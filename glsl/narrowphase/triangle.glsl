@@ -334,74 +334,22 @@ uint np_tri_prism_contact(np_target t, np_body hull, np_hull h, np_triangle tri,
 // ---- a hull face for reference: the triangle clipped by its sides ---------------------------
 
 // Hull face `face` for reference (hull frame): the triangle clipped by the face's sides,
-// its corners within the margin of the face's plane, more than four reduced. Feature keys:
-// face << 22 | clip feature (hull_clip.glsl).
+// its corners within the margin of the face's plane, more than four reduced
+// (hull_clip.glsl's clipper). Feature keys: face << 22 | clip feature.
 uint np_tri_face_contact(np_target t, np_body hull, np_hull h, np_triangle tri, uint face,
                          float margin)
 {
-    vec4 plane = np_hull_plane(h, face);
-    uvec2 ref = np_hull_face(h, face);
-    uint key = face << 22u;
-    vec4 poly[2u * NP_CLIP_MAX];
-    uint n = 3u;
-    for (uint k = 0u; k < n; k++)
-        poly[k] = np_clip_corner(np_tri_vertex(tri, k), np_clip_feature(NP_CLIP_INCIDENT_VERTEX, k, 0u), k);
+    np_incident inc;
+    inc.triangle = true;
+    inc.hull = h;
+    inc.in_ref.rot = mat3(1.0);
+    inc.in_ref.pos = vec3(0.0);
+    inc.v0 = tri.v0;
+    inc.v1 = tri.v1;
+    inc.v2 = tri.v2;
     float tol = 1.0e-5 * (length(tri.v0) + length(np_hull_vertex(h, 0u))) +
                 1.0e-6 * (length(hull.pos) + 1.0);
-    uint from = 0u, to = NP_CLIP_MAX;
-    for (uint s = 0u; s < ref.y && n > 0u; s++) {
-        vec4 side = np_clip_side(h, ref, s, plane.xyz);
-        if (side.xyz == vec3(0.0)) continue;
-        uint m = 0u;
-        vec4 p = poly[from + n - 1u];
-        float dp = dot(side.xyz, p.xyz) - side.w - tol;
-        for (uint k = 0u; k < n; k++) {
-            vec4 q = poly[from + k];
-            float dq = dot(side.xyz, q.xyz) - side.w - tol;
-            if ((dp > 0.0) != (dq > 0.0) && m < NP_CLIP_MAX)
-                poly[to + m++] = np_clip_crossing(p, q, dp, dq, s, dq > 0.0);
-            if (dq <= 0.0 && m < NP_CLIP_MAX) poly[to + m++] = q;
-            p = q;
-            dp = dq;
-        }
-        n = m;
-        from = to;
-        to = NP_CLIP_MAX - to;
-    }
-    // Heights of the triangle's corners outside the hull face: negative is overlap.
-    uint near = 0u;
-    for (uint k = 0u; k < n; k++)
-        if (dot(plane.xyz, poly[from + k].xyz) - plane.w < margin) near++;
-    uvec4 kept = uvec4(NP_NONE);
-    if (near > 4u) {
-        vec3 p0 = vec3(0.0), p1 = vec3(0.0);
-        for (uint pick = 0u; pick < 4u; pick++) {
-            float best = -NP_BIG;
-            for (uint k = 0u; k < n; k++) {
-                vec3 x = poly[from + k].xyz;
-                float height = dot(plane.xyz, x) - plane.w;
-                if (height >= margin || any(equal(kept, uvec4(k)))) continue;
-                float score = np_reduce_score(pick, x, height, p0, p1, plane.xyz);
-                if (score > best) {
-                    best = score;
-                    kept[pick] = k;
-                }
-            }
-            if (pick == 0u) p0 = poly[from + kept[0]].xyz;
-            if (pick == 1u) p1 = poly[from + kept[1]].xyz;
-        }
-    }
-    uint count = 0u;
-    for (uint k = 0u; k < n; k++) {
-        vec4 c = poly[from + k];
-        float height = dot(plane.xyz, c.xyz) - plane.w;
-        if (height >= margin || (near > 4u && !any(equal(kept, uvec4(k))))) continue;
-        vec3 x = np_clip_onto_face(h, ref, plane.xyz, c.xyz);
-        vec3 mid = x - plane.xyz * (0.5 * height);   // midway between the surfaces
-        np_emit(t, count, hull.pos + hull.rot * mid, height, key | (uint(c.w) & 0xfffu));
-        count++;
-    }
-    return count;
+    return np_face_clip_contact(t, hull, h, face, inc, face << 22u, tol, margin);
 }
 
 // Edge axis: one point midway between the closest points of the hull edge and the
