@@ -64,14 +64,28 @@ uint keep_points(uint q, uvec4 kept)
     return count - left;
 }
 
-// How far the bodies of the run (pair `pair`) close in along `normal` (a to b) within
-// the step, turning included: a point farther apart than this and the margin stays apart.
-float reach_along(uvec4 pair, vec3 normal)
+// How the bodies of the run (pair `pair`) move within the step, found once per run: how
+// far a closes in on b, and how far each one's turn may carry a point (its turn times its
+// half diagonal).
+struct run_motion {
+    vec3 closing;
+    float turn_a, turn_b;
+};
+
+run_motion run_motion_of(uvec4 pair)
 {
-    vec3 closing = body_step_motion(pair.x) - body_step_motion(pair.y);
-    float turn_a = body_step_turn(pair.x) * length(shapes[body_info[pair.x].x].aabb_half.xyz);
-    float turn_b = body_step_turn(pair.y) * length(shapes[body_info[pair.y].x].aabb_half.xyz);
-    return params.contact.x + max(dot(closing, normal), 0.0) + turn_a + turn_b;
+    run_motion m;
+    m.closing = body_step_motion(pair.x) - body_step_motion(pair.y);
+    m.turn_a = body_step_turn(pair.x) * length(shapes[body_info[pair.x].x].aabb_half.xyz);
+    m.turn_b = body_step_turn(pair.y) * length(shapes[body_info[pair.y].x].aabb_half.xyz);
+    return m;
+}
+
+// How far the bodies close in along `normal` (a to b) within the step, turning included:
+// a point farther apart than this and the margin stays apart.
+float reach_along(run_motion m, vec3 normal)
+{
+    return params.contact.x + max(dot(m.closing, normal), 0.0) + m.turn_a + m.turn_b;
 }
 
 // A warm point keeps its place while its spread is at least this share of the best.
@@ -91,7 +105,7 @@ bool near_kept(uvec4 kept, uint pick, vec3 x)
 
 void reduce_run(uint first, uint end)
 {
-    uvec4 pair = pairs[pair_half_base() + first];
+    run_motion motion = run_motion_of(pairs[pair_half_base() + first]);
     uvec4 kept = uvec4(NP_NONE);
     vec3 p0 = vec3(0.0), p1 = vec3(0.0), n = vec3(0.0, 1.0, 0.0);
     for (uint pick = 0u; pick < 4u; pick++) {
@@ -100,7 +114,7 @@ void reduce_run(uint first, uint end)
         uint warm = NP_NONE;
         for (uint q = first; q < end; q++) {
             uint count = manifolds[q].info.x;
-            float reach = count != 0u ? reach_along(pair, manifolds[q].normal.xyz) : 0.0;
+            float reach = count != 0u ? reach_along(motion, manifolds[q].normal.xyz) : 0.0;
             for (uint k = 0u; k < count; k++) {
                 uint point = (q << 2u) | k;
                 vec4 x = manifolds[q].point[k];
