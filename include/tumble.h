@@ -300,6 +300,7 @@ typedef enum tb_shape_type {
     TB_SHAPE_HULL = 3,
     TB_SHAPE_MESH = 4,
     TB_SHAPE_HEIGHTFIELD = 5,
+    TB_SHAPE_COMPOUND = 6,
     TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
 } tb_shape_type;
 
@@ -373,6 +374,47 @@ TB_API tb_result tb_shape_create_heightfield(tb_world* world, const tb_shape_def
                                              uint32_t count_z, float cell_x, float cell_z,
                                              const uint8_t* holes, tb_shape_id* out);
 
+/// A child of a compound: a sphere, box or hull shape of the same world, placed by a pose in
+/// the frame the caller builds the compound in.
+typedef struct tb_compound_child {
+    tb_shape_id shape;
+    tb_vec3 position;   ///< where the child's origin lies
+    tb_quat rotation;   ///< the child's frame: a unit quaternion (length 1 within 1e-3)
+} tb_compound_child;
+
+/// Compound: a rigid union of 1 to 64 convex children (spheres, boxes, hulls). Each child
+/// keeps its own density, friction and restitution; the compound's mass, centre of mass and
+/// inertia are composed from them (parallel axis theorem). Like a hull body, a compound body
+/// turns about its centre of mass: its body frame is the composed principal frame, and
+/// tb_shape_get_compound_info says where that frame lies in the caller's frame. Pairs with
+/// other bodies are found and solved per child (and per triangle against meshes), each
+/// child pair with its own manifold and warm start. The children stay in use while the
+/// compound lives (tb_shape_destroy refuses them). Fails with TB_ERROR_INVALID_ARGUMENT on
+/// NULL children, no or more than 64 children, a child that is not a sphere, box or hull, a
+/// position that is not finite or farther than 1e6 m, or a rotation that is not a unit
+/// quaternion; with
+/// TB_ERROR_INVALID_ID or TB_ERROR_STALE_ID on a child id that names no live shape.
+TB_API tb_result tb_shape_create_compound(tb_world* world, const tb_compound_child* children,
+                                          uint32_t count, tb_shape_id* out);
+
+/// What a compound became.
+typedef struct tb_compound_info {
+    uint32_t child_count;
+    float volume;             ///< m^3, the children's sum
+    float mass_per_volume;    ///< kg/m^3: the children's mass over their volume
+    tb_vec3 center_of_mass;   ///< in the frame the children were given in
+    tb_quat principal_axes;   ///< rotation from the body frame to the children's frame
+    tb_vec3 unit_inertia;     ///< principal moments of inertia per kg, about the body axes
+} tb_compound_info;
+
+TB_API tb_result tb_shape_get_compound_info(const tb_world* world, tb_shape_id shape,
+                                            tb_compound_info* out);
+/// A compound's children with their poses in its body frame: writes at most `capacity` to
+/// `out` (may be NULL with capacity 0) and the child count to *count.
+TB_API tb_result tb_shape_get_compound_children(const tb_world* world, tb_shape_id shape,
+                                                tb_compound_child* out, uint32_t capacity,
+                                                uint32_t* count);
+
 /// What a mesh became.
 typedef struct tb_mesh_info {
     uint32_t vertex_count, triangle_count;
@@ -390,6 +432,11 @@ TB_API tb_result tb_shape_get_mesh_geometry(const tb_world* world, tb_shape_id s
                                             tb_vec3* vertices, uint32_t vertex_capacity,
                                             uint32_t* indices, uint32_t triangle_capacity,
                                             uint32_t* vertex_count, uint32_t* triangle_count);
+
+/// A sphere's radius and a box's half extents, as created.
+TB_API tb_result tb_shape_get_sphere_radius(const tb_world* world, tb_shape_id shape, float* out);
+TB_API tb_result tb_shape_get_box_half_extents(const tb_world* world, tb_shape_id shape,
+                                               tb_vec3* out);
 
 /// What a hull became.
 typedef struct tb_hull_info {

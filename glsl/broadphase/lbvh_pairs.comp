@@ -21,9 +21,11 @@ uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIR
 void report(uint i, uint j)
 {
     if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
-        bool mesh = body_is(j, TB_BODY_FLAG_MESH);
-        lbvh_cache().v[(mesh ? 0u : partners) * lbvh_capacity() + entry] = mesh ? TB_LBVH_END : j;
-        partners = mesh ? TB_LBVH_CACHED_PAIRS : partners + 1u;
+        // A mesh or compound partner splits into many pairs: no cache for this entry.
+        bool many = body_is(j, TB_BODY_FLAG_MESH) || body_is(j, TB_BODY_FLAG_COMPOUND) ||
+                    body_is(i, TB_BODY_FLAG_COMPOUND);
+        lbvh_cache().v[(many ? 0u : partners) * lbvh_capacity() + entry] = many ? TB_LBVH_END : j;
+        partners = many ? TB_LBVH_CACHED_PAIRS : partners + 1u;
     }
     bp_report(min(i, j), max(i, j));
 }
@@ -40,7 +42,7 @@ bool write_cached(uint i, uint slots)
 {
     uint found = pairs_counted(i, slots);
     if (found > TB_LBVH_CACHED_PAIRS) return false;
-    if (found > 0u && lbvh_cache().v[entry] == TB_LBVH_END) return false;   // met a mesh
+    if (found > 0u && lbvh_cache().v[entry] == TB_LBVH_END) return false;   // met a split pair
     for (uint k = 0u; k < found; k++) {
         uint j = lbvh_cache().v[k * lbvh_capacity() + entry];
         bp_report(min(i, j), max(i, j));

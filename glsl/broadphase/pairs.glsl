@@ -11,11 +11,14 @@
 // (grown by the contact margin) touches, as (a, b, TB_NO_COLOUR, triangle + 1): the midphase
 // of meshes, done where the pair is found so the narrowphase and the solver see one convex
 // pair per triangle and the four broadphases share it. Mesh bodies are large to every
-// broadphase, so only the plain walks over large bodies meet them.
+// broadphase, so only the plain walks over large bodies meet them. A pair with a compound
+// body is likewise reported once per pair of children whose boxes touch (and per child and
+// triangle against a mesh); layout.h, TB_PAIR_TRIANGLE_BITS, says how pairs[].w holds them.
 #ifndef TB_PAIRS_GLSL
 #define TB_PAIRS_GLSL
 
 #include "../midphase/mesh.glsl"
+#include "../midphase/compound.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_broadphase_push push; };
 
@@ -56,8 +59,9 @@ void bp_put(uint a, uint b, uint sub)
 }
 
 // A heightfield's triangles under the box [lo, hi] (its frame): both of every cell in
-// the box's range of rows and columns whose corners reach the box's height range.
-void bp_report_cells(uint a, uint b, uint shape, vec3 lo, vec3 hi)
+// the box's range of rows and columns whose corners reach the box's height range. `part`
+// (the other body's child, shifted into place) joins each triangle + 1.
+void bp_report_cells(uint a, uint b, uint shape, vec3 lo, vec3 hi, uint part)
 {
     field_view field = field_of_shape(shape);
     uvec4 range = field_cells(field, lo, hi);
@@ -69,34 +73,58 @@ void bp_report_cells(uint a, uint b, uint shape, vec3 lo, vec3 hi)
                 continue;
             uint n = k * (field.count.x - 1u) + i;
             if ((field_flags(field, 2u * n) & TB_MESH_DEGENERATE) != 0u) continue;   // a hole
-            bp_put(a, b, 2u * n + 1u);
-            bp_put(a, b, 2u * n + 2u);
+            bp_put(a, b, (2u * n + 1u) | part);
+            bp_put(a, b, (2u * n + 2u) | part);
         }
     }
 }
 
-// The pairs of (a, b), one of them a mesh or heightfield body: one per triangle near the
-// other's box.
-void bp_report_triangles(uint a, uint b)
+// A mesh's triangles whose BVH leaf boxes touch the box [lo, hi] (its frame).
+void bp_report_leaves(uint a, uint b, uint shape, vec3 lo, vec3 hi, uint part)
 {
-    uint m = body_is(a, TB_BODY_FLAG_MESH) ? a : b, other = m == a ? b : a;
-    float reach = params.contact.x;
-    vec3 lo, hi;
-    mesh_local_box(body_pos[m].xyz, body_rot[m], body_aabb_min[other].xyz - reach,
-                   body_aabb_max[other].xyz + reach, lo, hi);
-    uint shape = body_info[m].x;
-    if (shapes[shape].info.x == TB_GPU_SHAPE_HEIGHTFIELD) {
-        bp_report_cells(a, b, shape, lo, hi);
-        return;
-    }
     mesh_view mesh = mesh_of_shape(shape);
     uvec3 qlo, qhi;
     if (!mesh_query(mesh, lo, hi, qlo, qhi)) return;
     for (uint i = 0u; i < mesh.nodes;) {
         uvec4 node = mesh.image.v[mesh.sections.x + i];
         bool hit = bvh_node_overlaps(node, qlo, qhi);
-        if (hit && bvh_is_leaf(node)) bp_put(a, b, (node.w & ~TB_BVH_LEAF) + 1u);
+        if (hit && bvh_is_leaf(node)) bp_put(a, b, ((node.w & ~TB_BVH_LEAF) + 1u) | part);
         i = bvh_next(i, node, hit);
+    }
+}
+
+// The pairs of (a, b), one of them a mesh or heightfield body: one per triangle near the
+// other's box, or near each of its children's boxes when it is a compound.
+void bp_report_triangles(uint a, uint b)
+{
+    uint m = body_is(a, TB_BODY_FLAG_MESH) ? a : b, other = m == a ? b : a;
+    uint shape = body_info[m].x;
+    bool field = shapes[shape].info.x == TB_GPU_SHAPE_HEIGHTFIELD;
+    uint parts = compound_parts(other);
+    for (uint c = 0u; c < parts; c++) {
+        vec3 lo, hi;
+        part_box(other, c, params.contact.x, lo, hi);
+        mesh_local_box(body_pos[m].xyz, body_rot[m], lo, hi, lo, hi);
+        uint part = c << TB_PAIR_TRIANGLE_BITS;
+        if (field) bp_report_cells(a, b, shape, lo, hi, part);
+        else bp_report_leaves(a, b, shape, lo, hi, part);
+    }
+}
+
+// The pairs of (a, b), one of them a compound: one per pair of parts (children, or the
+// body itself) whose boxes touch, as (a, b, TB_NO_COLOUR, a's child | b's child << 16).
+void bp_report_parts(uint a, uint b)
+{
+    uint count_a = compound_parts(a), count_b = compound_parts(b);
+    for (uint i = 0u; i < count_a; i++) {
+        vec3 lo_a, hi_a;
+        part_box(a, i, params.contact.x, lo_a, hi_a);
+        if (!boxes_touch(lo_a, hi_a, body_aabb_min[b].xyz, body_aabb_max[b].xyz)) continue;
+        for (uint j = 0u; j < count_b; j++) {
+            vec3 lo_b, hi_b;
+            part_box(b, j, 0.0, lo_b, hi_b);
+            if (boxes_touch(lo_a, hi_a, lo_b, hi_b)) bp_put(a, b, i | (j << 16));
+        }
     }
 }
 
@@ -104,6 +132,7 @@ void bp_report_triangles(uint a, uint b)
 void bp_report(uint a, uint b)
 {
     if (body_is(a, TB_BODY_FLAG_MESH) || body_is(b, TB_BODY_FLAG_MESH)) bp_report_triangles(a, b);
+    else if (body_is(a, TB_BODY_FLAG_COMPOUND) || body_is(b, TB_BODY_FLAG_COMPOUND)) bp_report_parts(a, b);
     else bp_put(a, b, 0u);
 }
 

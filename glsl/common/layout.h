@@ -131,6 +131,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                              heightfield): every broadphase treats it as a
                                              large static body, and its pairs are split into
                                              one per triangle (midphase) */
+#define TB_BODY_FLAG_COMPOUND   TB_U(8)   /* its shape is a compound: its pairs are split into
+                                             one per child (and triangle) */
 
 /* tb_gpu_shape info.x; equal to tb_shape_type in tumble.h */
 #define TB_GPU_SHAPE_SPHERE     TB_U(0)
@@ -139,6 +141,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_GPU_SHAPE_HULL       TB_U(3)
 #define TB_GPU_SHAPE_MESH       TB_U(4)
 #define TB_GPU_SHAPE_HEIGHTFIELD TB_U(5)
+#define TB_GPU_SHAPE_COMPOUND   TB_U(6)
 
 /* Convex hull limits: the GPU walks vertices, faces and edges per pair and clips an incident
  * face polygon in registers, so their sizes are bounded. tb_shape_create_hull rejects hulls
@@ -574,18 +577,40 @@ TB_STRUCT(tb_gpu_heightfield_header) {
                                  flags (uvec4 from the image's start) */
 };
 
+/* A compound's GPU image (src/geom/compound.h packs it), reached like a mesh's (its shape's
+ * tb_gpu_shape.hull.xy): a uvec4 header (x the child count) and then one
+ * tb_gpu_compound_child per child. Children are convex shapes of the shape table placed in
+ * the compound's body frame (its centre-of-mass principal frame). */
+#define TB_COMPOUND_MAX_CHILDREN  64
+TB_STRUCT(tb_gpu_compound_child) {
+    TB_VEC4 position;         /* xyz the child's origin in the body frame; w its shape index
+                                 (uint bits) */
+    TB_VEC4 rotation;         /* the child's frame in the body frame, quaternion xyzw */
+    TB_VEC4 box_center;       /* xyz the child's box in the body frame: centre */
+    TB_VEC4 box_half;         /* xyz half extents */
+};
+
+/* Which part of its bodies a pair is (pairs[].w, written where the pair is found): a pair
+ * with a mesh body holds its triangle + 1 in the low TB_PAIR_TRIANGLE_BITS bits and, when
+ * the other body is a compound, the child's index above them; a pair without a mesh body
+ * holds body a's child index in the low 16 bits and body b's in the high 16 (0 for a body
+ * that is not a compound). */
+#define TB_PAIR_TRIANGLE_BITS     25
+#define TB_PAIR_TRIANGLE_MASK     ((TB_U(1) << TB_PAIR_TRIANGLE_BITS) - TB_U(1))
+
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */
     TB_VEC4 aabb_half;      /* xyz half extents of the local AABB */
     TB_VEC4 params;         /* sphere: x radius; box: xyz half extents; plane: xyz normal, w offset */
     TB_UVEC4 info;          /* x TB_GPU_SHAPE_*; hulls (boxes too): y vertex count, z face
-                               count, w edge count */
+                               count, w edge count; compounds: y child count */
     TB_VEC4 material;       /* x friction coefficient, y restitution, z w reserved */
     TB_UVEC4 hull;          /* hulls (boxes too): x first vertex, y first face plane (indices into
                                hull_vectors), z first edge, w face base (indices into
                                hull_topology); the geometry is in the body frame, which for a
-                               hull is its centre-of-mass principal frame */
+                               hull is its centre-of-mass principal frame; meshes,
+                               heightfields and compounds: xy their image's device address */
 };
 
 #endif

@@ -110,6 +110,13 @@ bool body_is(uint i, uint flags)
     return (body_info[i].y & flags) == flags;
 }
 
+// A pair with a mesh or heightfield body: one of a body pair's triangles (layout.h,
+// TB_PAIR_TRIANGLE_BITS), which mesh_points.comp, not contacts.comp, turns into points.
+bool pair_has_mesh(uvec4 pair)
+{
+    return body_is(pair.x, TB_BODY_FLAG_MESH) || body_is(pair.y, TB_BODY_FLAG_MESH);
+}
+
 // How far body i's centre may move this step: its velocity with this step's gravity, times
 // dt; zero unless it is dynamic. The broadphase sweeps boxes and the narrowphase widens a
 // pair's speculative reach by it.

@@ -73,6 +73,6 @@ void main()
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
     // A mesh triangle's pair is mesh_points.comp's, whole.
-    bool mine = p < counters.state.z && pairs[pair_half_base() + p].w == 0u;
+    bool mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]);
     np_count_points(mine ? pair_contacts(p) : 0u);
 }

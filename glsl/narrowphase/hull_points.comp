@@ -32,9 +32,9 @@ void main()
 {
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
-    // A mesh triangle's pair (pairs[p].w != 0) is never contacts.comp's, so its manifold
-    // may hold a mark of a step abandoned before this pass: not ours.
+    // A mesh triangle's pair is never contacts.comp's, so its manifold may hold a mark of a
+    // step abandoned before this pass: not ours.
     bool marked = p < counters.state.z && manifolds[p].axis.z != 0u &&
-                  pairs[pair_half_base() + p].w == 0u;
+                  !pair_has_mesh(pairs[pair_half_base() + p]);
     np_count_points(marked ? hull_points(p) : 0u);
 }

@@ -7,6 +7,8 @@
 #ifndef TB_NP_MANIFOLD_GLSL
 #define TB_NP_MANIFOLD_GLSL
 
+#include "../midphase/compound.glsl"
+
 #define NP_NONE 0xffffffffu
 
 // A body's pose and shape.
@@ -25,6 +27,23 @@ np_body np_load_body(uint i)
     np_body b;
     b.pos = body_pos[i].xyz;
     b.rot = quat_to_mat3(body_rot[i]);
+    b.params = shapes[s].params;
+    b.material = shapes[s].material.xy;
+    b.type = shapes[s].info.x;
+    b.shape = s;
+    return b;
+}
+
+// Part c of body i as a pair sees it: a compound's child c, placed by the child's pose in
+// the body, with the child's own shape and material; any other body is itself.
+np_body np_load_part(uint i, uint c)
+{
+    np_body b = np_load_body(i);
+    if (b.type != TB_GPU_SHAPE_COMPOUND) return b;
+    tb_gpu_compound_child child = compound_of_shape(b.shape).child[c];
+    uint s = floatBitsToUint(child.position.w);
+    b.pos += b.rot * child.position.xyz;
+    b.rot = b.rot * quat_to_mat3(child.rotation);
     b.params = shapes[s].params;
     b.material = shapes[s].material.xy;
     b.type = shapes[s].info.x;

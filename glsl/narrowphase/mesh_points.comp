@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-// Narrowphase of mesh pairs: the pair of a convex body and one triangle of a mesh body (the
-// broadphase split the body pair by triangle, pairs[p].w = triangle + 1) gets its manifold
+// Narrowphase of mesh pairs: the pair of a convex body (or a compound's child) and one
+// triangle of a mesh body (the broadphase split the body pair by triangle) gets its manifold
 // here (triangle.glsl); contacts.comp leaves it alone. One thread per pair; other pairs
 // return at once. Recorded after contacts (and hull_points) while the world has mesh shapes;
 // mesh_reduce then keeps at most four points per body pair. Dispatched indirectly over
@@ -29,7 +29,7 @@ uint mesh_points(uint p)
     vec3 normal = vec3(0.0);
     uint count = 0u;
     np_body shape = q.first, mesh = q.second;   // the mesh comes last in the canonical order
-    uint triangle = q.sub - 1u;
+    uint triangle = q.triangle;
     if (shape.type == TB_GPU_SHAPE_SPHERE) {
         np_triangle tri = np_load_triangle(mesh, triangle, mesh.rot, mesh.pos);
         count = np_sphere_triangle(q.t, shape, tri, q.margin, normal);
@@ -46,6 +46,6 @@ void main()
 {
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
-    bool mesh = p < counters.state.z && pairs[pair_half_base() + p].w != 0u;
+    bool mesh = p < counters.state.z && pair_has_mesh(pairs[pair_half_base() + p]);
     np_count_points(mesh ? mesh_points(p) : 0u);
 }

@@ -151,7 +151,7 @@ void main()
     uint p = pair_thread_index(), pairs_now = counters.state.z, base = pair_half_base();
     if (p >= pairs_now) return;
     uvec4 pair = pairs[base + p];
-    if (pair.w == 0u || (p > 0u && same_run(pairs[base + p - 1u], pair))) return;
+    if (!pair_has_mesh(pair) || (p > 0u && same_run(pairs[base + p - 1u], pair))) return;
     uint end = p + 1u, total = manifolds[p].info.x;
     for (; end < pairs_now && same_run(pair, pairs[base + end]); end++) total += manifolds[end].info.x;
     if (total > uint(TB_MAX_MANIFOLD_POINTS)) reduce_run(p, end);

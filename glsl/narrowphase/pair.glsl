@@ -19,7 +19,8 @@ float pair_margin(uint a, uint b)
 
 struct np_pair {
     uint a, b;
-    uint sub;                 // a mesh pair's triangle + 1, else 0
+    uint sub;                 // which parts of a and b (pairs[].w; layout.h)
+    uint triangle;            // a mesh pair's triangle
     np_body body_a, body_b;
     np_body first, second;    // the canonical order
     bool swapped;             // first is b
@@ -34,8 +35,14 @@ np_pair np_pair_load(uint p)
     q.a = pair.x;
     q.b = pair.y;
     q.sub = pair.w;
-    q.body_a = np_load_body(q.a);
-    q.body_b = np_load_body(q.b);
+    // A compound's child: above the triangle beside a mesh, else a's in the low half of w
+    // and b's in the high half.
+    bool mesh = pair_has_mesh(pair);
+    uint child_a = mesh ? pair.w >> TB_PAIR_TRIANGLE_BITS : pair.w & 0xffffu;
+    uint child_b = mesh ? child_a : pair.w >> 16;
+    q.triangle = (pair.w & TB_PAIR_TRIANGLE_MASK) - 1u;
+    q.body_a = np_load_part(q.a, child_a);
+    q.body_b = np_load_part(q.b, child_b);
     q.swapped = q.body_a.type > q.body_b.type || (q.body_a.type == q.body_b.type && q.a > q.b);
     q.t = np_target_make(p, q.a, q.b, q.sub, current_half() ^ 1u);
     // Selected operands (not one call per order): both orders run the very same

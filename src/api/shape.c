@@ -200,7 +200,8 @@ tb_result tb_shape_destroy(tb_world* w, tb_shape_id id)
     tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
     if (!s) return r;
     if (s->users)
-        return tb_fail(&w->diag, TB_ERROR_IN_USE, "shape is used by %u bodies; destroy them first",
+        return tb_fail(&w->diag, TB_ERROR_IN_USE, "shape is used by %u bodies or compounds; "
+                       "destroy them first",
                        s->users);
     tb_shapes_remove(w, slot);
     return TB_OK;
@@ -246,6 +247,29 @@ static const tb_shape_record* record_of(tb_world* w, tb_shape_id id, tb_shape_ty
         return NULL;
     }
     return s;
+}
+
+tb_result tb_shape_get_sphere_radius(const tb_world* cw, tb_shape_id id, float* out)
+{
+    tb_world* w = (tb_world*)cw;
+    tb_result r;
+    const tb_shape_record* s = record_of(w, id, TB_SHAPE_SPHERE, "sphere", &r);
+    if (!s) return r;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    *out = w->gpu_shapes[id.index1 - 1].params.x;
+    return TB_OK;
+}
+
+tb_result tb_shape_get_box_half_extents(const tb_world* cw, tb_shape_id id, tb_vec3* out)
+{
+    tb_world* w = (tb_world*)cw;
+    tb_result r;
+    const tb_shape_record* s = record_of(w, id, TB_SHAPE_BOX, "box", &r);
+    if (!s) return r;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
+    tb_gpu_vec4 p = w->gpu_shapes[id.index1 - 1].params;
+    *out = (tb_vec3){ p.x, p.y, p.z };
+    return TB_OK;
 }
 
 static const tb_hull* hull_of(tb_world* w, tb_shape_id id, tb_result* r)

@@ -3,6 +3,8 @@
  *
  *   hull.h        convex hulls: quickhull from a point cloud, faces, edges, mass properties
  *                 in the principal frame (quickhull.c, hull.c, hull_mass.c)
+ *   compound.h    compounds: composed mass properties, children in the principal frame,
+ *                 the GPU image (compound.c)
  *   bvh.h         a triangle mesh's bounding volume hierarchy: median splits, depth-first
  *                 nodes with skip indices, boxes quantized to 16 bits (bvh.c)
  *   heightfield.h heightfields: a grid of heights cut into triangles, holes, active edges
@@ -19,6 +21,7 @@
 #define TB_GEOM_GEOM_H
 
 #include "geom/bvh.h"
+#include "geom/compound.h"
 #include "geom/heightfield.h"
 #include "geom/hull.h"
 #include "geom/mesh.h"

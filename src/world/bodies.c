@@ -77,8 +77,10 @@ static tb_body_id commit(tb_world* w, const tb_body_def* d, const tb_body_resolv
     *tb_body_store_write(s, TB_ARRAY_INV_INERTIA, slot) = (tb_gpu_vec4){
         inverse(rb->inertia.x), inverse(rb->inertia.y), inverse(rb->inertia.z), d->gravity_scale };
     tb_gpu_uvec4* info = (tb_gpu_uvec4*)tb_body_store_write(s, TB_ARRAY_INFO, slot);
+    const tb_shape_record* shape = &w->shapes[rb->shape];
     uint32_t flags = TB_BODY_FLAG_ALIVE | (dynamic ? TB_BODY_FLAG_DYNAMIC : 0) |
-                     (w->shapes[rb->shape].mesh || w->shapes[rb->shape].heightfield ? TB_BODY_FLAG_MESH : 0);
+                     (shape->mesh || shape->heightfield ? TB_BODY_FLAG_MESH : 0) |
+                     (shape->compound ? TB_BODY_FLAG_COMPOUND : 0);
     *info = (tb_gpu_uvec4){ rb->shape, flags, 0, 0 };
     *tb_body_store_write(s, TB_ARRAY_AABB_MIN, slot) = (tb_gpu_vec4){ 0, 0, 0, 0 };
     *tb_body_store_write(s, TB_ARRAY_AABB_MAX, slot) = (tb_gpu_vec4){ 0, 0, 0, 0 };

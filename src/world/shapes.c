@@ -85,21 +85,24 @@ static void count_mesh_shape(tb_world* w, int change)
     if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
 }
 
-/* The GPU image of a mesh or heightfield: its bytes, and the image written at dst. */
+/* The GPU image of a mesh, heightfield or compound: its bytes, and the image written at dst. */
 static VkDeviceSize image_bytes(const tb_shape_record* rec)
 {
-    size_t n = rec->mesh ? tb_mesh_image_size(rec->mesh) : tb_heightfield_image_size(rec->heightfield);
+    size_t n = rec->mesh ? tb_mesh_image_size(rec->mesh)
+             : rec->compound ? tb_compound_image_size(rec->compound)
+             : tb_heightfield_image_size(rec->heightfield);
     return n * sizeof(tb_gpu_uvec4);
 }
 
 static void pack_image(const tb_shape_record* rec, void* dst)
 {
     if (rec->mesh) tb_mesh_pack(rec->mesh, dst);
+    else if (rec->compound) tb_compound_pack(rec->compound, dst);
     else tb_heightfield_pack(rec->heightfield, dst);
 }
 
-/* A mesh's or heightfield's GPU image has a buffer of its own, which the shape finds by its
- * device address (tb_gpu_shape.hull.xy); the next submission uploads it. */
+/* A mesh's, heightfield's or compound's GPU image has a buffer of its own, which the shape
+ * finds by its device address (tb_gpu_shape.hull.xy); the next submission uploads it. */
 static tb_result create_mesh_buffer(tb_world* w, tb_shape_record* rec, tb_gpu_shape* gpu)
 {
     VkDeviceSize bytes = image_bytes(rec);
@@ -111,24 +114,31 @@ static tb_result create_mesh_buffer(tb_world* w, tb_shape_record* rec, tb_gpu_sh
     return TB_OK;
 }
 
-/* Hulls (boxes too) and meshes own their geometry; the hull table packs hulls for the GPU,
- * a mesh has its own buffer. */
+/* A compound's children stay in use while it lives. */
+static void use_children(tb_world* w, const tb_compound* c, int change)
+{
+    for (uint32_t i = 0; c && i < c->count; i++)
+        w->shapes[c->parts[i].shape].users = (uint32_t)((int64_t)w->shapes[c->parts[i].shape].users + change);
+}
+
+/* Hulls (boxes too), meshes and compounds own their geometry; the hull table packs hulls
+ * for the GPU, a mesh or compound has its own buffer. */
 tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* gpu,
                         tb_shape_id* out)
 {
     tb_gpu_shape entry = *gpu;
     int triangles = rec->mesh || rec->heightfield;
-    tb_result r = triangles ? create_mesh_buffer(w, rec, &entry) : TB_OK;
+    int imaged = triangles || rec->compound;
+    tb_result r = imaged ? create_mesh_buffer(w, rec, &entry) : TB_OK;
     if (!r) r = add_shape(w, rec, &entry, out);
     if (r) {
         tb_buffer_destroy(&w->memory, &rec->mesh_buffer);
         tb_shape_release_hull(rec);
         return r;
     }
-    if (triangles) {
-        count_mesh_shape(w, +1);
-        w->mesh_uploads++;
-    }
+    if (triangles) count_mesh_shape(w, +1);
+    if (imaged) w->mesh_uploads++;
+    use_children(w, rec->compound, +1);
     if (!rec->hull) return TB_OK;
     w->narrowphase.hulls.dirty = 1;
     if (rec->type == TB_SHAPE_HULL) count_hull_shape(w, +1);
@@ -147,6 +157,8 @@ void tb_shape_release_hull(tb_shape_record* s)
         free(s->heightfield);
         s->heightfield = NULL;
     }
+    free(s->compound);
+    s->compound = NULL;
     if (!s->hull) return;
     tb_hull_free(s->hull);
     free(s->hull);
@@ -159,8 +171,9 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     s->alive = 0;
     if (s->hull) w->narrowphase.hulls.dirty = 1;
     if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
-    if (s->mesh || s->heightfield) {
-        count_mesh_shape(w, -1);
+    use_children(w, s->compound, -1);
+    if (s->mesh || s->heightfield) count_mesh_shape(w, -1);
+    if (s->mesh || s->heightfield || s->compound) {
         if (s->mesh_pending) w->mesh_uploads--;
         s->mesh_pending = 0;
         tb_buffer_destroy(&w->memory, &s->mesh_buffer);

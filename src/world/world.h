@@ -50,8 +50,9 @@ typedef struct tb_shape_record {
     tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
     tb_mesh* mesh;          ///< meshes: their geometry (owned); else NULL
     tb_heightfield* heightfield; ///< heightfields: their grid (owned); else NULL
-    tb_buffer mesh_buffer;  ///< meshes and heightfields: the GPU image, by device address
-    int mesh_pending;       ///< meshes and heightfields: the image is not uploaded yet
+    tb_compound* compound;  ///< compounds: their children (owned); else NULL
+    tb_buffer mesh_buffer;  ///< meshes, heightfields and compounds: the GPU image, by address
+    int mesh_pending;       ///< meshes, heightfields and compounds: the image is not uploaded yet
 } tb_shape_record;
 
 /// Contact events of one step, as the callbacks get them.
