@@ -92,6 +92,9 @@ tb_result hulls_make_shapes(tb_world* world, uint32_t* rng, tb_shape_id shapes[H
 /// A rotation uniform over all rotations.
 tb_quat hulls_random_rotation(uint32_t* rng);
 
+/* compounds.c */
+tb_result compounds_build(tb_world* world, const scene_params* params, scene_instance** out);
+
 /* terrain.c */
 tb_result terrain_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result heightfield_build(tb_world* world, const scene_params* params, scene_instance** out);

@@ -250,6 +250,10 @@ static const scene scenes[] = {
     { "hulls", "N random convex hulls (8-32 vertices) dropped into a walled box; checks "
                "nan, escaped, max_penetration", 1.0f / 60.0f, 4000, 360,
       hulls_build, pile_check, instance_free },
+    { "compounds", "N compound bodies of 2-5 children (dumbbells, angles, tables, snowmen, "
+                   "clubs of a hull and a sphere) dropped into a walled box; checks nan, "
+                   "escaped, resting, max_penetration", 1.0f / 60.0f, 10000, 600,
+      compounds_build, pile_check, instance_free },
     { "terrain", "N boxes and hulls (half each) dropped in 4 layers onto a bowl of rolling "
                  "hills, a static triangle mesh of 131,072 triangles; checks nan, escaped "
                  "(through or off it), resting, max_penetration", 1.0f / 60.0f, 10000, 600,
