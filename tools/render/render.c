@@ -216,7 +216,7 @@ static void draw_mesh_shapes(const tr_renderer* r, tr_push* p)
     }
 }
 
-/* Spheres, boxes and each hull shape's mesh, every body slot an instance of each (the
+/* Spheres, boxes and each hull and compound shape's mesh, every body slot an instance of each (the
  * shaders hide the slots that are not theirs), then the mesh shapes, with the bound mesh
  * pipeline. */
 static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
@@ -227,9 +227,9 @@ static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
     vkCmdBindIndexBuffer(cb, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
     draw_mesh(r, p, TB_GPU_SHAPE_SPHERE, &r->sphere, slots);
     draw_mesh(r, p, TB_GPU_SHAPE_BOX, &r->cube, slots);
-    p->mode[0] = TB_GPU_SHAPE_HULL;
     for (uint32_t i = 0; i < r->hull_draw_count; i++) {
         const tr_shape_draw* h = &r->hull_draws[i];
+        p->mode[0] = h->shape_type;
         p->mode[3] = h->shape_slot;
         push(r, p);
         vkCmdDrawIndexed(cb, h->index_count, slots, h->first_index, h->vertex_offset, 0);

@@ -221,6 +221,16 @@ typedef struct shape_mesh {
  * normal on each. */
 static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, shape_mesh* out)
 {
+    return tr_hull_vertices(r, id, &out->vertices, &out->vertex_count);
+}
+
+tb_result tr_hull_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** vertices,
+                           uint32_t* vertex_count)
+{
+    shape_mesh m = { 0 };
+    shape_mesh* out = &m;
+    *vertices = NULL;
+    *vertex_count = 0;
     uint32_t count = 0;
     tb_result res = tb_shape_get_hull_vertices(r->world, id, NULL, 0, &count);
     if (res) return tr_fail(r, res, "tb_shape_get_hull_vertices: %s",
@@ -243,6 +253,8 @@ static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, shape_mesh* out)
     free(points);
     if (n && !out->vertices)
         return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a hull mesh");
+    *vertices = out->vertices;
+    *vertex_count = out->vertex_count;
     return TB_OK;
 }
 
@@ -288,8 +300,8 @@ static void place_meshes(tr_renderer* r, const shape_mesh* meshes, uint32_t coun
         if (!meshes[i].vertex_count) continue;
         memcpy(v + unit_vertices + first, meshes[i].vertices,
                (size_t)meshes[i].vertex_count * sizeof *v);
-        tr_shape_draw d = { meshes[i].slot, unit_indices + first, meshes[i].vertex_count,
-                            (int32_t)unit_vertices };
+        tr_shape_draw d = { meshes[i].slot, (uint32_t)meshes[i].type, unit_indices + first,
+                            meshes[i].vertex_count, (int32_t)unit_vertices };
         if (meshes[i].type == TB_SHAPE_MESH) r->mesh_draws[r->mesh_draw_count++] = d;
         else r->hull_draws[r->hull_draw_count++] = d;
         first += meshes[i].vertex_count;
@@ -333,16 +345,21 @@ static tb_result upload(tr_renderer* r, shape_mesh* meshes, uint32_t count)
     return TB_OK;
 }
 
-/* The mesh of shape `id` in slot `s`, if it is a hull or a triangle mesh: *made says. */
+/* The mesh of shape `id` in slot `s`, if it is a hull, a compound or a triangle mesh:
+ * *made says. */
 static tb_result shape_mesh_of(tr_renderer* r, tb_shape_id id, uint32_t s, shape_mesh* out,
                                int* made)
 {
     *made = 0;
     if (tb_shape_get_type(r->world, id, &out->type) != TB_OK) return TB_OK;
-    if (out->type != TB_SHAPE_HULL && out->type != TB_SHAPE_MESH) return TB_OK;
+    if (out->type != TB_SHAPE_HULL && out->type != TB_SHAPE_MESH &&
+        out->type != TB_SHAPE_COMPOUND)
+        return TB_OK;
     out->slot = s;
     *made = 1;
     if (out->type == TB_SHAPE_HULL) return hull_mesh_of(r, id, out);
+    if (out->type == TB_SHAPE_COMPOUND)
+        return tr_compound_vertices(r, id, &out->vertices, &out->vertex_count);
     return tr_mesh_shape_vertices(r, id, &out->vertices, &out->vertex_count);
 }
 

@@ -63,6 +63,7 @@ typedef struct tr_vertex { float position[3], normal[3]; } tr_vertex;
  * render pass). */
 typedef struct tr_shape_draw {
     uint32_t shape_slot;
+    uint32_t shape_type;        /* TB_GPU_SHAPE_HULL, _COMPOUND or _MESH */
     uint32_t first_index, index_count;
     int32_t vertex_offset;
 } tr_shape_draw;
@@ -178,6 +179,12 @@ void tr_hulls_destroy(tr_renderer* r);
 /// The flat-shaded triangle a, b, c: three vertices, each with the normal of the side from
 /// which they run counter-clockwise (zero for a triangle of no area).
 void tr_flat_triangle(const tb_vec3* a, const tb_vec3* b, const tb_vec3* c, tr_vertex out[3]);
+/// A hull shape's triangles, flat shaded, in a malloc'd *out (3 vertices per triangle).
+tb_result tr_hull_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** out,
+                           uint32_t* vertex_count);
+/// A compound shape's children's triangles in its body frame, likewise (render_compounds.c).
+tb_result tr_compound_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** out,
+                               uint32_t* vertex_count);
 /// A mesh shape's triangles, flat shaded, in a malloc'd *out (3 vertices per triangle).
 tb_result tr_mesh_shape_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** out,
                                  uint32_t* vertex_count);

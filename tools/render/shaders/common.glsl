@@ -53,6 +53,7 @@ vec3 body_color(uint slot, uint shape_type)
         if (shape_type == TB_GPU_SHAPE_SPHERE) return vec3(0.92, 0.55, 0.25);
         if (shape_type == TB_GPU_SHAPE_BOX) return vec3(0.25, 0.50, 0.90);
         if (shape_type == TB_GPU_SHAPE_HULL) return vec3(0.35, 0.75, 0.30);
+        if (shape_type == TB_GPU_SHAPE_COMPOUND) return vec3(0.65, 0.40, 0.80);
         return vec3(0.72, 0.72, 0.70);
     }
     return PALETTE[hash_u32(slot) & 7u];

@@ -1,6 +1,6 @@
 #version 450
 /* Instanced body meshes, one instance per body slot: a unit sphere or box scaled by the
- * shape, or one hull shape's own mesh (pc.mode.w its shape slot); other shapes and dead
+ * shape, or one hull or compound shape's own mesh (pc.mode.w its shape slot); other shapes and dead
  * slots hidden. A triangle-mesh shape's mesh is drawn once per body of that shape only:
  * its instances are the body slots mesh_lists.comp listed (pc.mode.w where they start). With TR_FLAG_SEE_THROUGH, static bodies are split between this draw and a
  * see-through one (TR_FLAG_STATIC_PASS, static bodies only) in mesh.frag. */
@@ -31,7 +31,8 @@ void main()
     tb_gpu_shape shape = shapes[shape_slot];
     uint type = shape.info.x;
     if (type != pc.mode.x) { gl_Position = HIDDEN; return; }
-    if (type == TB_GPU_SHAPE_HULL && shape_slot != pc.mode.w) { gl_Position = HIDDEN; return; }
+    bool own_mesh = type == TB_GPU_SHAPE_HULL || type == TB_GPU_SHAPE_COMPOUND;
+    if (own_mesh && shape_slot != pc.mode.w) { gl_Position = HIDDEN; return; }
     bool is_static = (body_info[slot].y & TB_BODY_FLAG_DYNAMIC) == 0u;
     bool static_pass = (pc.mode.z & TR_FLAG_STATIC_PASS) != 0u;
     if (static_pass && !is_static) { gl_Position = HIDDEN; return; }

@@ -1,0 +1,111 @@
+/* Compound shapes' meshes: each child's mesh (the unit sphere or cube scaled by the child's
+ * size, or the hull's own mesh) placed by the child's pose in the compound's body frame,
+ * all in one flat list drawn like a hull shape's (render_hulls.c). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "layout.h"
+#include "render_internal.h"
+
+/* v turned by the unit quaternion q. */
+static tb_vec3 turn(tb_quat q, tb_vec3 v)
+{
+    /* t = 2 q.xyz x v; v + w t + q.xyz x t */
+    tb_vec3 t = { 2 * (q.y * v.z - q.z * v.y), 2 * (q.z * v.x - q.x * v.z),
+                  2 * (q.x * v.y - q.y * v.x) };
+    return (tb_vec3){ v.x + q.w * t.x + q.y * t.z - q.z * t.y,
+                      v.y + q.w * t.y + q.z * t.x - q.x * t.z,
+                      v.z + q.w * t.z + q.x * t.y - q.y * t.x };
+}
+
+/* Vertex v scaled, then placed by the child's pose. */
+static tr_vertex place(const tr_vertex* v, tb_vec3 scale, const tb_compound_child* c)
+{
+    tb_vec3 p = { v->position[0] * scale.x, v->position[1] * scale.y, v->position[2] * scale.z };
+    tb_vec3 n = { v->normal[0], v->normal[1], v->normal[2] };
+    p = turn(c->rotation, p);
+    n = turn(c->rotation, n);
+    return (tr_vertex){ { p.x + c->position.x, p.y + c->position.y, p.z + c->position.z },
+                        { n.x, n.y, n.z } };
+}
+
+/* A unit mesh's triangles (the sphere's or the cube's), vertex by vertex. */
+static tb_result unit_child(tr_renderer* r, const tr_mesh* m, tb_vec3 scale,
+                            const tb_compound_child* c, tr_vertex** out, uint32_t* count)
+{
+    const tr_vertex* vertices = r->vertices.mapped;
+    const uint32_t* indices = r->indices.mapped;
+    tr_vertex* v = malloc((m->index_count ? m->index_count : 1) * sizeof *v);
+    if (!v) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a compound mesh");
+    for (uint32_t k = 0; k < m->index_count; k++)
+        v[k] = place(&vertices[m->vertex_offset + (int32_t)indices[m->first_index + k]], scale, c);
+    *out = v;
+    *count = m->index_count;
+    return TB_OK;
+}
+
+/* Child c's mesh in the compound's body frame. */
+static tb_result child_vertices(tr_renderer* r, const tb_compound_child* c, tr_vertex** out,
+                                uint32_t* count)
+{
+    tb_shape_type type;
+    *out = NULL;
+    *count = 0;
+    tb_result res = tb_shape_get_type(r->world, c->shape, &type);
+    if (type == TB_SHAPE_SPHERE) {
+        float radius = 0;
+        if (!res) res = tb_shape_get_sphere_radius(r->world, c->shape, &radius);
+        return res ? res : unit_child(r, &r->sphere, (tb_vec3){ radius, radius, radius }, c, out, count);
+    }
+    if (type == TB_SHAPE_BOX) {
+        tb_vec3 half = { 0, 0, 0 };
+        if (!res) res = tb_shape_get_box_half_extents(r->world, c->shape, &half);
+        return res ? res : unit_child(r, &r->cube, half, c, out, count);
+    }
+    if (!res) res = tr_hull_vertices(r, c->shape, out, count);
+    for (uint32_t k = 0; !res && k < *count; k++) (*out)[k] = place(&(*out)[k], (tb_vec3){ 1, 1, 1 }, c);
+    return res;
+}
+
+/* Appends `add` (count vertices, freed) to the list. */
+static tb_result append(tr_renderer* r, tr_vertex** list, uint32_t* total, tr_vertex* add,
+                        uint32_t count)
+{
+    tr_vertex* grown = realloc(*list, ((size_t)*total + count + 1) * sizeof *grown);
+    if (!grown) {
+        free(add);
+        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a compound mesh");
+    }
+    memcpy(grown + *total, add, (size_t)count * sizeof *add);
+    free(add);
+    *list = grown;
+    *total += count;
+    return TB_OK;
+}
+
+tb_result tr_compound_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** out,
+                               uint32_t* vertex_count)
+{
+    tb_compound_child children[TB_COMPOUND_MAX_CHILDREN];
+    uint32_t n = 0, total = 0;
+    *out = NULL;
+    *vertex_count = 0;
+    tb_result res = tb_shape_get_compound_children(r->world, id, children,
+                                                   TB_COMPOUND_MAX_CHILDREN, &n);
+    if (res) return tr_fail(r, res, "tb_shape_get_compound_children: %s",
+                            tb_world_last_error(r->world));
+    tr_vertex* list = NULL;
+    for (uint32_t i = 0; i < n && !res; i++) {
+        tr_vertex* v;
+        uint32_t count;
+        res = child_vertices(r, &children[i], &v, &count);
+        if (!res) res = append(r, &list, &total, v, count);
+    }
+    if (res) {
+        free(list);
+        return res;
+    }
+    *out = list;
+    *vertex_count = total;
+    return TB_OK;
+}
