@@ -276,3 +276,31 @@ def test_shape_ids_list_live_shapes_in_slot_order(make_world):
     again = world.box((2, 2, 2))
     assert world.shape_ids() == [a, again, c]
     assert not world.is_valid(b) and world.is_valid(again)
+
+
+def test_compound_composes_mass_and_stands_on_its_children(make_world):
+    world = make_world()
+    world.add_body(world.plane((0, 1, 0)), static=True)
+    ball = world.sphere(0.25)
+    dumbbell = world.compound([(ball, (1.0, 0.5, 0.0)), (ball, (-1.0, 0.5, 0.0), (0, 0, 0, 1))])
+    assert world.shape_type(dumbbell) == "compound"
+    info = world.compound_info(dumbbell)
+    assert info["child_count"] == 2
+    np.testing.assert_allclose(info["center_of_mass"], [0, 0.5, 0], atol=1e-6)
+    np.testing.assert_allclose(sorted(info["unit_inertia"]),
+                               [0.4 * 0.25 ** 2, 0.4 * 0.25 ** 2 + 1, 0.4 * 0.25 ** 2 + 1],
+                               rtol=1e-5)
+    children = world.compound_children(dumbbell)
+    assert [c[0] for c in children] == [ball, ball]
+    np.testing.assert_allclose(np.linalg.norm(children[0][1]), 1.0, rtol=1e-6)
+    assert world.sphere_radius(ball) == 0.25
+    np.testing.assert_array_equal(world.box_half_extents(world.box((1, 2, 3))), [1, 2, 3])
+    body = world.add_body(dumbbell, (0, 0.3, 0), rotation=info["principal_axes"])
+    world.step(DT, n=60)
+    np.testing.assert_allclose(world.pose(body)[0], [0, 0.25, 0], atol=2e-3)
+    with pytest.raises(tumble.TumbleError, match="only spheres, boxes and hulls"):
+        world.compound([(world.plane((0, 1, 0)), (0, 0, 0))])
+    with pytest.raises(tumble.TumbleError, match="is used by"):
+        world.destroy(ball)
+    with pytest.raises(TypeError, match="child 0 must be"):
+        world.compound([ball])

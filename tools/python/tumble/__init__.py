@@ -54,7 +54,8 @@ SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
                 lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull",
-                lib.TB_SHAPE_MESH: "mesh", lib.TB_SHAPE_HEIGHTFIELD: "heightfield"}
+                lib.TB_SHAPE_MESH: "mesh", lib.TB_SHAPE_HEIGHTFIELD: "heightfield",
+                lib.TB_SHAPE_COMPOUND: "compound"}
 _LOG_LEVELS = {lib.TB_LOG_DEBUG: "debug", lib.TB_LOG_INFO: "info",
                lib.TB_LOG_WARNING: "warning", lib.TB_LOG_ERROR: "error"}
 
@@ -628,8 +629,70 @@ class World:
             ffi.from_buffer("uint32_t[]", triangles), nt[0], nv, nt))
         return vertices, triangles
 
+    def compound(self, children):
+        """A compound of 1 to 64 convex children (spheres, boxes, hulls): a sequence of
+        (shape, position) or (shape, position, rotation), position 3 numbers (m) and
+        rotation a unit quaternion (x, y, z, w), in the frame the compound is built in. Each
+        child keeps its density, friction and restitution. The body frame is the composed
+        principal frame (origin at the centre of mass): compound_info says where it lies."""
+        if isinstance(children, (str, bytes)) or not hasattr(children, "__len__"):
+            raise TypeError("children must be a sequence of (shape, position[, rotation])")
+        c = ffi.new("tb_compound_child[]", max(len(children), 1))
+        for i, child in enumerate(children):
+            if not isinstance(child, (tuple, list)) or len(child) not in (2, 3):
+                raise TypeError("child %d must be (shape, position) or (shape, position, "
+                                "rotation)" % i)
+            c[i].shape = _as_shape("child %d shape" % i, child[0])._c()
+            c[i].position = _vec3("child %d position" % i, child[1])
+            c[i].rotation = _quat("child %d rotation" % i,
+                                  child[2] if len(child) == 3 else (0, 0, 0, 1))
+        out = ffi.new("tb_shape_id*")
+        self._check(lib.tb_shape_create_compound(self._handle(), c, len(children), out))
+        return Shape._from_c(out[0])
+
+    def compound_info(self, shape):
+        """What a compound became: child_count, volume (m^3), mass_per_volume (kg/m^3),
+        center_of_mass and principal_axes (in the children's frame), unit_inertia."""
+        s = _as_shape("shape", shape)
+        info = ffi.new("tb_compound_info*")
+        self._check(lib.tb_shape_get_compound_info(self._handle(), s._c(), info))
+        v3 = lambda v: np.array([v.x, v.y, v.z], dtype=np.float32)  # noqa: E731
+        q = info.principal_axes
+        return {"child_count": info.child_count, "volume": info.volume,
+                "mass_per_volume": info.mass_per_volume,
+                "center_of_mass": v3(info.center_of_mass),
+                "principal_axes": np.array([q.x, q.y, q.z, q.w], dtype=np.float32),
+                "unit_inertia": v3(info.unit_inertia)}
+
+    def compound_children(self, shape):
+        """A compound's children as (shape, position, rotation) in its body frame."""
+        s = _as_shape("shape", shape)._c()
+        w = self._handle()
+        count = ffi.new("uint32_t*")
+        self._check(lib.tb_shape_get_compound_children(w, s, ffi.NULL, 0, count))
+        c = ffi.new("tb_compound_child[]", max(count[0], 1))
+        self._check(lib.tb_shape_get_compound_children(w, s, c, count[0], count))
+        return [(Shape._from_c(c[i].shape),
+                 np.array([c[i].position.x, c[i].position.y, c[i].position.z], dtype=np.float32),
+                 np.array([c[i].rotation.x, c[i].rotation.y, c[i].rotation.z, c[i].rotation.w],
+                          dtype=np.float32)) for i in range(count[0])]
+
+    def sphere_radius(self, shape):
+        """A sphere shape's radius, m."""
+        out = ffi.new("float*")
+        self._check(lib.tb_shape_get_sphere_radius(self._handle(),
+                                                   _as_shape("shape", shape)._c(), out))
+        return out[0]
+
+    def box_half_extents(self, shape):
+        """A box shape's half extents, m (3 float32)."""
+        out = ffi.new("tb_vec3*")
+        self._check(lib.tb_shape_get_box_half_extents(self._handle(),
+                                                      _as_shape("shape", shape)._c(), out))
+        return np.array([out.x, out.y, out.z], dtype=np.float32)
+
     def shape_type(self, shape):
-        """"sphere", "box", "plane", "hull", "mesh" or "heightfield"."""
+        """"sphere", "box", "plane", "hull", "mesh", "heightfield" or "compound"."""
         out = ffi.new("tb_shape_type*")
         self._check(lib.tb_shape_get_type(self._handle(), _as_shape("shape", shape)._c(), out))
         return _SHAPE_TYPES[out[0]]
