@@ -246,9 +246,10 @@ static void test_table_on_mesh(void** state)
     th_world_destroy(w);
 }
 
-/* Every broadphase splits the same body pairs into the same child pairs: a first step over
- * a heap of compounds placed touching (later steps differ with the pair order the solver
- * meets, as for any shapes). */
+/* Every broadphase splits the same body pairs into the same child pairs (each has its own
+ * paths to the pair output: sap's third gear writes for other lanes' finders): a first
+ * step over a heap of compounds placed touching (later steps differ with the pair order
+ * the solver meets, as for any shapes). */
 static void test_broadphases_agree(void** state)
 {
     (void)state;

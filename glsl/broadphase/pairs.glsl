@@ -24,6 +24,7 @@ layout(push_constant) uniform Push { tb_gpu_broadphase_push push; };
 
 uint bp_base;     // where the finder's run starts (write mode)
 uint bp_found;    // pairs the finder found so far
+bool bp_measuring = false;   // count only, even in write mode (bp_report_count)
 
 bool bp_writing()
 {
@@ -54,7 +55,8 @@ void bp_begin(uint finder)
 
 void bp_put(uint a, uint b, uint sub)
 {
-    if (bp_writing()) pairs[pair_half_base() + bp_base + bp_found] = uvec4(a, b, TB_NO_COLOUR, sub);
+    if (bp_writing() && !bp_measuring)
+        pairs[pair_half_base() + bp_base + bp_found] = uvec4(a, b, TB_NO_COLOUR, sub);
     bp_found++;
 }
 
@@ -112,18 +114,25 @@ void bp_report_triangles(uint a, uint b)
 }
 
 // The pairs of (a, b), one of them a compound: one per pair of parts (children, or the
-// body itself) whose boxes touch, as (a, b, TB_NO_COLOUR, a's child | b's child << 16).
+// body itself) that may touch within the step, as (a, b, TB_NO_COLOUR, a's child | b's
+// child << 16). A child of a whose box misses b's is skipped whole; the rest meet b's parts
+// as oriented boxes (a rotated thin child's axis-aligned box is several times its size).
+// The tests run in one order of the two bodies (lower index first), so every broadphase,
+// whichever body it finds the pair from, splits it into the same child pairs.
 void bp_report_parts(uint a, uint b)
 {
-    uint count_a = compound_parts(a), count_b = compound_parts(b);
-    for (uint i = 0u; i < count_a; i++) {
-        vec3 lo_a, hi_a;
-        part_box(a, i, params.contact.x, lo_a, hi_a);
-        if (!boxes_touch(lo_a, hi_a, body_aabb_min[b].xyz, body_aabb_max[b].xyz)) continue;
-        for (uint j = 0u; j < count_b; j++) {
-            vec3 lo_b, hi_b;
-            part_box(b, j, 0.0, lo_b, hi_b);
-            if (boxes_touch(lo_a, hi_a, lo_b, hi_b)) bp_put(a, b, i | (j << 16));
+    bool flip = a > b;
+    uint first = flip ? b : a, second = flip ? a : b;
+    part_frame f1 = part_frame_of(first), f2 = part_frame_of(second);
+    float half_margin = 0.5 * params.contact.x;
+    for (uint i = 0u; i < f1.parts; i++) {
+        vec3 lo, hi;
+        part_box(first, i, params.contact.x, lo, hi);
+        if (!boxes_touch(lo, hi, body_aabb_min[second].xyz, body_aabb_max[second].xyz)) continue;
+        oriented_box box1 = part_oriented_box(f1, i, half_margin);
+        for (uint j = 0u; j < f2.parts; j++) {
+            if (oriented_boxes_touch(box1, part_oriented_box(f2, j, half_margin)))
+                bp_put(a, b, flip ? j | (i << 16) : i | (j << 16));
         }
     }
 }
@@ -134,6 +143,39 @@ void bp_report(uint a, uint b)
     if (body_is(a, TB_BODY_FLAG_MESH) || body_is(b, TB_BODY_FLAG_MESH)) bp_report_triangles(a, b);
     else if (body_is(a, TB_BODY_FLAG_COMPOUND) || body_is(b, TB_BODY_FLAG_COMPOUND)) bp_report_parts(a, b);
     else bp_put(a, b, 0u);
+}
+
+// Whether (a, b) splits into more pairs than one (a mesh or compound body).
+bool bp_splits(uint a, uint b)
+{
+    uint many = TB_BODY_FLAG_MESH | TB_BODY_FLAG_COMPOUND;
+    return (body_info[a].y & many) != 0u || (body_info[b].y & many) != 0u;
+}
+
+// For a kernel that writes pairs for another invocation's finder: how many pairs (a, b)
+// gives, and those pairs written from `at` in the pair array's half. This invocation's own
+// run (bp_base, bp_found) is left as it was.
+uint bp_report_count(uint a, uint b)
+{
+    uint base = bp_base, found = bp_found;
+    bp_found = 0u;
+    bp_measuring = true;
+    bp_report(a, b);
+    uint count = bp_found;
+    bp_measuring = false;
+    bp_base = base;
+    bp_found = found;
+    return count;
+}
+
+void bp_report_at(uint a, uint b, uint at)
+{
+    uint base = bp_base, found = bp_found;
+    bp_base = at;
+    bp_found = 0u;
+    bp_report(a, b);
+    bp_base = base;
+    bp_found = found;
 }
 
 // Every body slot must end here once per pass, found pairs or not.

@@ -151,11 +151,17 @@ void sweep_together()
             if (inside) tmin = box_min.v[t];
             inside = inside && !beyond(tmin, lmax);
             bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, box_max.v[t]);
-            uvec4 hits = subgroupBallot(hit);
-            if (hit && bp_writing())
-                pairs[pair_half_base() + base + found + subgroupBallotExclusiveBitCount(hits)] =
-                    uvec4(min(lmin.w, tmin.w), max(lmin.w, tmin.w), TB_NO_COLOUR, 0u);
-            found += subgroupBallotBitCount(hits);
+            // A compound's body pair splits into its child pairs, each hit into its own
+            // count of pairs, written after the lanes before it.
+            uint a = min(lmin.w, tmin.w), b = max(lmin.w, tmin.w);
+            bool split = hit && bp_splits(a, b);
+            uint count = split ? bp_report_count(a, b) : (hit ? 1u : 0u);
+            uint at = base + found + subgroupExclusiveAdd(count);
+            if (hit && bp_writing()) {
+                if (split) bp_report_at(a, b, at);
+                else pairs[pair_half_base() + at] = uvec4(a, b, TB_NO_COLOUR, 0u);
+            }
+            found += subgroupAdd(count);
             if (!subgroupAll(inside) || found == wanted) break;
         }
         if (gl_SubgroupInvocationID == lane) {
