@@ -125,12 +125,23 @@ void bp_report_parts(uint a, uint b)
     uint first = flip ? b : a, second = flip ? a : b;
     part_frame f1 = part_frame_of(first), f2 = part_frame_of(second);
     float half_margin = 0.5 * params.contact.x;
-    for (uint i = 0u; i < f1.parts; i++) {
+    // The second's parts whose boxes touch the first's box: bits of a 64-bit mask.
+    uvec2 near = uvec2(0u);
+    for (uint j = 0u; j < f2.parts; j++) {
         vec3 lo, hi;
-        part_box(first, i, params.contact.x, lo, hi);
+        frame_part_box(f2, j, params.contact.x, lo, hi);
+        if (boxes_touch(lo, hi, body_aabb_min[first].xyz, body_aabb_max[first].xyz))
+            near[j >> 5] |= 1u << (j & 31u);
+    }
+    for (uint i = 0u; i < f1.parts && near != uvec2(0u); i++) {
+        vec3 lo, hi;
+        frame_part_box(f1, i, params.contact.x, lo, hi);
         if (!boxes_touch(lo, hi, body_aabb_min[second].xyz, body_aabb_max[second].xyz)) continue;
         oriented_box box1 = part_oriented_box(f1, i, half_margin);
-        for (uint j = 0u; j < f2.parts; j++) {
+        for (uvec2 left = near; left != uvec2(0u);) {
+            uint word = left.x != 0u ? 0u : 1u;
+            uint j = 32u * word + uint(findLSB(left[word]));
+            left[word] &= left[word] - 1u;
             if (oriented_boxes_touch(box1, part_oriented_box(f2, j, half_margin)))
                 bp_put(a, b, flip ? j | (i << 16) : i | (j << 16));
         }

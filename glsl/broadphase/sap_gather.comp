@@ -33,6 +33,7 @@ bool gather(uint s, out vec3 centre)
     if (here == 2u && (s == 0u || before < 2u)) sap_header().h.state.z = s;
     uint i = sap_uints(TB_SAP_ORDER).v[s];
     uint flags = (body_is(i, TB_BODY_FLAG_DYNAMIC) ? TB_SAP_BOX_DYNAMIC : 0u) |
+                 (body_is(i, TB_BODY_FLAG_COMPOUND) ? TB_SAP_BOX_SPLIT : 0u) |
                  (here != 0u ? TB_SAP_BOX_OUT : 0u);
     uint axis = sap_axis();
     vec3 lo = body_aabb_min[i].xyz, hi = body_aabb_max[i].xyz;

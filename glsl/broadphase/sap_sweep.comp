@@ -150,11 +150,14 @@ void sweep_together()
             uvec4 tmin = uvec4(0u);
             if (inside) tmin = box_min.v[t];
             inside = inside && !beyond(tmin, lmax);
-            bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, box_max.v[t]);
+            uvec4 tmax = uvec4(0u);
+            if (inside) tmax = box_max.v[t];
+            bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, tmax);
             // A compound's body pair splits into its child pairs, each hit into its own
-            // count of pairs, written after the lanes before it.
+            // count of pairs, written after the lanes before it. (Mesh bodies are large:
+            // never swept.)
             uint a = min(lmin.w, tmin.w), b = max(lmin.w, tmin.w);
-            bool split = hit && bp_splits(a, b);
+            bool split = hit && ((lflags | tmax.w) & TB_SAP_BOX_SPLIT) != 0u;
             uint count = split ? bp_report_count(a, b) : (hit ? 1u : 0u);
             uint at = base + found + subgroupExclusiveAdd(count);
             if (hit && bp_writing()) {

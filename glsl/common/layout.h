@@ -401,6 +401,7 @@ TB_STRUCT(tb_gpu_isap_control) {
 /* Flags of a sorted box (box_max.w bits). */
 #define TB_SAP_BOX_DYNAMIC      TB_U(1)  /* the body is dynamic */
 #define TB_SAP_BOX_OUT          TB_U(2)  /* dead or large: not swept, never a candidate */
+#define TB_SAP_BOX_SPLIT        TB_U(4)  /* a compound: its pairs split by child */
 /* A static body whose largest side exceeds this many times the largest dynamic side (and
  * the contact margin) is large: every dynamic body tests it instead of the sweep. */
 #define TB_SAP_LARGE_FACTOR     4.0

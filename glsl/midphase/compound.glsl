@@ -67,9 +67,12 @@ bool boxes_touch(vec3 lo_a, vec3 hi_a, vec3 lo_b, vec3 hi_b)
 // A body as its parts' boxes need it: its pose, and how far any of its points may move
 // within the step (its sweep and the reach of its turn, as world_aabb.comp grows its box).
 struct part_frame {
+    uint body;
     vec3 pos;
     mat3 rot;
-    float reach;
+    vec3 motion;      // the step's sweep
+    float turn;       // how far the turn carries a point of the shape's box
+    float reach;      // |motion| + turn
     uint shape, parts;
     bool compound;
 };
@@ -77,13 +80,32 @@ struct part_frame {
 part_frame part_frame_of(uint i)
 {
     part_frame f;
+    f.body = i;
     f.pos = body_pos[i].xyz;
     f.rot = quat_to_mat3(body_rot[i]);
     f.shape = body_info[i].x;
     f.compound = body_is_compound(i);
     f.parts = f.compound ? shapes[f.shape].info.y : 1u;
-    f.reach = length(body_step_motion(i)) + body_step_turn(i) * length(shapes[f.shape].aabb_half.xyz);
+    f.motion = body_step_motion(i);
+    f.turn = body_step_turn(i) * length(shapes[f.shape].aabb_half.xyz);
+    f.reach = length(f.motion) + f.turn;
     return f;
+}
+
+// Part c's world box, swept and grown as compound_child_box's.
+void frame_part_box(part_frame f, uint c, float grow, out vec3 lo, out vec3 hi)
+{
+    if (!f.compound) {
+        lo = body_aabb_min[f.body].xyz - grow;
+        hi = body_aabb_max[f.body].xyz + grow;
+        return;
+    }
+    tb_gpu_compound_child child = compound_of_shape(f.shape).child[c];
+    vec3 centre = f.pos + f.rot * child.box_center.xyz;
+    mat3 spread = mat3(abs(f.rot[0]), abs(f.rot[1]), abs(f.rot[2]));
+    vec3 half_size = spread * child.box_half.xyz + grow + f.turn;
+    lo = min(centre - half_size, centre - half_size + f.motion);
+    hi = max(centre + half_size, centre + half_size + f.motion);
 }
 
 // A box of any orientation: centre, axes (columns), half extents.
