@@ -6,33 +6,28 @@
 // found once, by its earlier leaf, and the walk needs no stack; a dynamic body then tests
 // every large static body (the run of TB_LBVH_KEY_LARGE keys after the leaves). Pairs are
 // stored as (lower slot, higher slot) whoever finds them. Large and dead entries find none.
-// The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry, ended by
-// TB_LBVH_END when fewer; the write pass reports an entry that met no more from them
-// instead of walking again (the walk is most of the search). A partner may give several
-// pairs (a mesh's triangles, a compound's children): bp_report splits it again the same
-// way. An entry with more partners caches none (TB_LBVH_END in slot 0) and walks again.
+// The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry; the write
+// pass writes an entry that found no more from them instead of walking again (the walk is
+// most of the search). A mesh body's pairs are one per triangle, not one per partner: an
+// entry that meets one caches nothing (slot 0 says so) and the write pass walks again.
 // The count pass also clears the scene bounds for the next step.
 #include "world.glsl"
 #include "pairs.glsl"
 #include "lbvh_bodies.glsl"
 
 uint entry;      // this thread's sorted entry
-uint partners;   // partners the count pass met so far
+uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIRS: caches none)
 
 void report(uint i, uint j)
 {
-    if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS)
-        lbvh_cache().v[partners * lbvh_capacity() + entry] = j;
-    partners++;
+    if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
+        // A mesh or compound partner splits into many pairs: no cache for this entry.
+        bool many = body_is(j, TB_BODY_FLAG_MESH) || body_is(j, TB_BODY_FLAG_COMPOUND) ||
+                    body_is(i, TB_BODY_FLAG_COMPOUND);
+        lbvh_cache().v[(many ? 0u : partners) * lbvh_capacity() + entry] = many ? TB_LBVH_END : j;
+        partners = many ? TB_LBVH_CACHED_PAIRS : partners + 1u;
+    }
     bp_report(min(i, j), max(i, j));
-}
-
-// After the count pass's walk: the end of the cached partners, or none cached.
-void end_cache()
-{
-    if (partners == TB_LBVH_CACHED_PAIRS) return;
-    uint slot = partners > TB_LBVH_CACHED_PAIRS ? 0u : partners;
-    lbvh_cache().v[slot * lbvh_capacity() + entry] = TB_LBVH_END;
 }
 
 // Pairs body i found in the counting pass: its offset to the next slot's after the scan.
@@ -45,11 +40,11 @@ uint pairs_counted(uint i, uint slots)
 // The write pass of an entry that found few pairs: from the cache, in the walk's order.
 bool write_cached(uint i, uint slots)
 {
-    if (pairs_counted(i, slots) == 0u) return true;
-    if (lbvh_cache().v[entry] == TB_LBVH_END) return false;   // more partners than cached
-    for (uint k = 0u; k < TB_LBVH_CACHED_PAIRS; k++) {
+    uint found = pairs_counted(i, slots);
+    if (found > TB_LBVH_CACHED_PAIRS) return false;
+    if (found > 0u && lbvh_cache().v[entry] == TB_LBVH_END) return false;   // met a split pair
+    for (uint k = 0u; k < found; k++) {
         uint j = lbvh_cache().v[k * lbvh_capacity() + entry];
-        if (j == TB_LBVH_END) break;
         bp_report(min(i, j), max(i, j));
     }
     return true;
@@ -103,7 +98,6 @@ void main()
         tb_gpu_lbvh_node own = lbvh_nodes().node[lbvh_capacity() + s];
         search_tree(i, dynamic, own, params.contact.x);
         if (dynamic) search_large(i, leaves, count);
-        if (!bp_writing()) end_cache();
     }
     bp_end(i);
 }

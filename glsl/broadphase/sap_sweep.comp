@@ -158,21 +158,13 @@ void sweep_together()
             // never swept.)
             uint a = min(lmin.w, tmin.w), b = max(lmin.w, tmin.w);
             bool split = hit && ((lflags | tmax.w) & TB_SAP_BOX_SPLIT) != 0u;
-            if (subgroupAny(split)) {
-                uint count = split ? bp_report_count(a, b) : (hit ? 1u : 0u);
-                uint at = base + found + subgroupExclusiveAdd(count);
-                if (hit && bp_writing()) {
-                    if (split) bp_report_at(a, b, at);
-                    else pairs[pair_half_base() + at] = uvec4(a, b, TB_NO_COLOUR, 0u);
-                }
-                found += subgroupAdd(count);
-            } else {
-                uvec4 hits = subgroupBallot(hit);
-                if (hit && bp_writing())
-                    pairs[pair_half_base() + base + found + subgroupBallotExclusiveBitCount(hits)] =
-                        uvec4(a, b, TB_NO_COLOUR, 0u);
-                found += subgroupBallotBitCount(hits);
+            uint count = split ? bp_report_count(a, b) : (hit ? 1u : 0u);
+            uint at = base + found + subgroupExclusiveAdd(count);
+            if (hit && bp_writing()) {
+                if (split) bp_report_at(a, b, at);
+                else pairs[pair_half_base() + at] = uvec4(a, b, TB_NO_COLOUR, 0u);
             }
+            found += subgroupAdd(count);
             if (!subgroupAll(inside) || found == wanted) break;
         }
         if (gl_SubgroupInvocationID == lane) {
