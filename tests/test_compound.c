@@ -205,12 +205,12 @@ static void test_bricks_stack(void** state)
             fail_msg("brick %d at (%g %g %g), placed at height %g", i, settled[i].x, settled[i].y,
                      settled[i].z, starts[i].y);
     }
-    th_assert_ok(tb_world_step_n(w, DT, 540));
+    th_assert_ok(tb_world_step_n(w, DT, 300));
     for (int i = 0; i < 3; i++) {
         tb_vec3 p;
         th_read_pose(w, bodies[i], &p, NULL);
         if (!(distance(p, settled[i]) < 1e-3))
-            fail_msg("brick %d drifted %g m in 540 steps", i, distance(p, settled[i]));
+            fail_msg("brick %d drifted %g m in 300 steps", i, distance(p, settled[i]));
     }
     th_world_destroy(w);
 }

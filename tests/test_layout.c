@@ -66,6 +66,12 @@ static void test_shape_type_values(void** state)
     assert_int_equal(TB_GPU_SHAPE_BOX, (unsigned)TB_SHAPE_BOX);
     assert_int_equal(TB_GPU_SHAPE_PLANE, (unsigned)TB_SHAPE_PLANE);
     assert_int_equal(TB_GPU_SHAPE_HULL, (unsigned)TB_SHAPE_HULL);
+    assert_int_equal(TB_GPU_SHAPE_MESH, (unsigned)TB_SHAPE_MESH);
+    assert_int_equal(TB_GPU_SHAPE_HEIGHTFIELD, (unsigned)TB_SHAPE_HEIGHTFIELD);
+    assert_int_equal(TB_GPU_SHAPE_COMPOUND, (unsigned)TB_SHAPE_COMPOUND);
+    assert_int_equal(sizeof(tb_gpu_compound_child), 64);
+    /* A mesh pair's compound child rides above the triangle: 64 children fit. */
+    assert_true(TB_COMPOUND_MAX_CHILDREN <= (1u << (32 - TB_PAIR_TRIANGLE_BITS)));
 }
 
 /* Two bindings on one index would alias two buffers in the descriptor set. */

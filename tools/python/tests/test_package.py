@@ -109,10 +109,11 @@ def test_the_readme_example_is_examples_pile_py():
     assert blocks[0] == "".join(lines[1:])
 
 
-def test_the_readme_mesh_example_prints_what_it_shows():
+@pytest.mark.parametrize("heading", ["## Triangle meshes", "## Compounds"])
+def test_the_readme_shape_examples_print_what_they_show(heading):
     with open(README) as f:
         text = f.read()
-    section = text[text.index("## Triangle meshes"):]
+    section = text[text.index(heading):]
     code, shown = re.findall(r"```(?:python)?\n(.*?)```", section, re.S)[:2]
     done = run_python(code, {})
     assert done.returncode == 0, done.stderr
