@@ -102,10 +102,10 @@ void bp_report_triangles(uint a, uint b)
     uint m = body_is(a, TB_BODY_FLAG_MESH) ? a : b, other = m == a ? b : a;
     uint shape = body_info[m].x;
     bool field = shapes[shape].info.x == TB_GPU_SHAPE_HEIGHTFIELD;
-    uint parts = compound_parts(other);
-    for (uint c = 0u; c < parts; c++) {
+    part_frame f = part_frame_of(other);
+    for (uint c = 0u; c < f.parts; c++) {
         vec3 lo, hi;
-        part_box(other, c, params.contact.x, lo, hi);
+        frame_part_box(f, c, params.contact.x, lo, hi);
         mesh_local_box(body_pos[m].xyz, body_rot[m], lo, hi, lo, hi);
         uint part = c << TB_PAIR_TRIANGLE_BITS;
         if (field) bp_report_cells(a, b, shape, lo, hi, part);
@@ -154,13 +154,6 @@ void bp_report(uint a, uint b)
     if (body_is(a, TB_BODY_FLAG_MESH) || body_is(b, TB_BODY_FLAG_MESH)) bp_report_triangles(a, b);
     else if (body_is(a, TB_BODY_FLAG_COMPOUND) || body_is(b, TB_BODY_FLAG_COMPOUND)) bp_report_parts(a, b);
     else bp_put(a, b, 0u);
-}
-
-// Whether (a, b) splits into more pairs than one (a mesh or compound body).
-bool bp_splits(uint a, uint b)
-{
-    uint many = TB_BODY_FLAG_MESH | TB_BODY_FLAG_COMPOUND;
-    return (body_info[a].y & many) != 0u || (body_info[b].y & many) != 0u;
 }
 
 // For a kernel that writes pairs for another invocation's finder: how many pairs (a, b)

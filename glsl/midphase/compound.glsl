@@ -1,5 +1,6 @@
 // Compounds as the GPU reads them: the image (layout.h, tb_gpu_compound_child) reached
-// through the device address in the shape's tb_gpu_shape.hull.xy, one child at a time.
+// through the device address in the shape's tb_gpu_shape.hull.xy, one child at a time;
+// and the boxes of a pair's parts, which the broadphase's pair output splits pairs by.
 #ifndef TB_MIDPHASE_COMPOUND_GLSL
 #define TB_MIDPHASE_COMPOUND_GLSL
 
@@ -19,44 +20,6 @@ CompoundImage compound_of_shape(uint shape)
     return CompoundImage(shapes[shape].hull.xy);
 }
 
-bool body_is_compound(uint i)
-{
-    return (body_info[i].y & TB_BODY_FLAG_COMPOUND) != 0u;
-}
-
-// How many children body i has as a pair sees them: a compound's count, else 1 (itself).
-uint compound_parts(uint i)
-{
-    return body_is_compound(i) ? shapes[body_info[i].x].info.y : 1u;
-}
-
-// Child c's box in world space, swept over the step's motion as the body's own box is
-// (world_aabb.comp) and grown by `grow` (body i a compound).
-void compound_child_box(uint i, uint c, float grow, out vec3 lo, out vec3 hi)
-{
-    uint shape = body_info[i].x;
-    tb_gpu_compound_child child = compound_of_shape(shape).child[c];
-    mat3 r = quat_to_mat3(body_rot[i]);
-    vec3 centre = body_pos[i].xyz + r * child.box_center.xyz;
-    mat3 spread = mat3(abs(r[0]), abs(r[1]), abs(r[2]));
-    vec3 half_size = spread * child.box_half.xyz + grow +
-                     body_step_turn(i) * length(shapes[shape].aabb_half.xyz);
-    vec3 sweep = body_step_motion(i);
-    lo = min(centre - half_size, centre - half_size + sweep);
-    hi = max(centre + half_size, centre + half_size + sweep);
-}
-
-// Part c of body i's box: a compound's child's, or the body's own.
-void part_box(uint i, uint c, float grow, out vec3 lo, out vec3 hi)
-{
-    if (body_is_compound(i)) {
-        compound_child_box(i, c, grow, lo, hi);
-    } else {
-        lo = body_aabb_min[i].xyz - grow;
-        hi = body_aabb_max[i].xyz + grow;
-    }
-}
-
 bool boxes_touch(vec3 lo_a, vec3 hi_a, vec3 lo_b, vec3 hi_b)
 {
     return all(lessThanEqual(lo_a, hi_b)) && all(lessThanEqual(lo_b, hi_a));
@@ -64,8 +27,9 @@ bool boxes_touch(vec3 lo_a, vec3 hi_a, vec3 lo_b, vec3 hi_b)
 
 // ---- oriented boxes: the tighter test between the parts of a compound pair ----------------
 
-// A body as its parts' boxes need it: its pose, and how far any of its points may move
-// within the step (its sweep and the reach of its turn, as world_aabb.comp grows its box).
+// A body as its parts' boxes need it: its pose, its parts (a compound's children, else the
+// body itself), and how far any of its points may move within the step (its sweep and the
+// reach of its turn, as world_aabb.comp grows its box).
 struct part_frame {
     uint body;
     vec3 pos;
@@ -84,7 +48,7 @@ part_frame part_frame_of(uint i)
     f.pos = body_pos[i].xyz;
     f.rot = quat_to_mat3(body_rot[i]);
     f.shape = body_info[i].x;
-    f.compound = body_is_compound(i);
+    f.compound = body_is(i, TB_BODY_FLAG_COMPOUND);
     f.parts = f.compound ? shapes[f.shape].info.y : 1u;
     f.motion = body_step_motion(i);
     f.turn = body_step_turn(i) * length(shapes[f.shape].aabb_half.xyz);
@@ -92,7 +56,8 @@ part_frame part_frame_of(uint i)
     return f;
 }
 
-// Part c's world box, swept and grown as compound_child_box's.
+// Part c's world box, grown by `grow`: the body's own box, or a compound child's box in the
+// body swept over the step's motion and grown by the turn's reach as the body's own is.
 void frame_part_box(part_frame f, uint c, float grow, out vec3 lo, out vec3 hi)
 {
     if (!f.compound) {
