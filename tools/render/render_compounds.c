@@ -4,29 +4,23 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <cglm/cglm.h>
+
 #include "layout.h"
 #include "render_internal.h"
-
-/* v turned by the unit quaternion q. */
-static tb_vec3 turn(tb_quat q, tb_vec3 v)
-{
-    /* t = 2 q.xyz x v; v + w t + q.xyz x t */
-    tb_vec3 t = { 2 * (q.y * v.z - q.z * v.y), 2 * (q.z * v.x - q.x * v.z),
-                  2 * (q.x * v.y - q.y * v.x) };
-    return (tb_vec3){ v.x + q.w * t.x + q.y * t.z - q.z * t.y,
-                      v.y + q.w * t.y + q.z * t.x - q.x * t.z,
-                      v.z + q.w * t.z + q.x * t.y - q.y * t.x };
-}
 
 /* Vertex v scaled, then placed by the child's pose. */
 static tr_vertex place(const tr_vertex* v, tb_vec3 scale, const tb_compound_child* c)
 {
-    tb_vec3 p = { v->position[0] * scale.x, v->position[1] * scale.y, v->position[2] * scale.z };
-    tb_vec3 n = { v->normal[0], v->normal[1], v->normal[2] };
-    p = turn(c->rotation, p);
-    n = turn(c->rotation, n);
-    return (tr_vertex){ { p.x + c->position.x, p.y + c->position.y, p.z + c->position.z },
-                        { n.x, n.y, n.z } };
+    versor q = { c->rotation.x, c->rotation.y, c->rotation.z, c->rotation.w };
+    vec3 p = { v->position[0] * scale.x, v->position[1] * scale.y, v->position[2] * scale.z };
+    vec3 n = { v->normal[0], v->normal[1], v->normal[2] };
+    tr_vertex out;
+    glm_quat_rotatev(q, p, out.position);
+    glm_quat_rotatev(q, n, out.normal);
+    glm_vec3_add(out.position, (vec3){ c->position.x, c->position.y, c->position.z },
+                 out.position);
+    return out;
 }
 
 /* A unit mesh's triangles (the sphere's or the cube's), vertex by vertex. */

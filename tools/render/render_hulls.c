@@ -227,8 +227,6 @@ static tb_result hull_mesh_of(tr_renderer* r, tb_shape_id id, shape_mesh* out)
 tb_result tr_hull_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** vertices,
                            uint32_t* vertex_count)
 {
-    shape_mesh m = { 0 };
-    shape_mesh* out = &m;
     *vertices = NULL;
     *vertex_count = 0;
     uint32_t count = 0;
@@ -244,17 +242,15 @@ tb_result tr_hull_vertices(tr_renderer* r, tb_shape_id id, tr_vertex** vertices,
     }
     uint32_t* tris = NULL;
     uint32_t n = tr_hull_triangles(points, count, &tris);
-    out->vertices = n ? malloc(3 * (size_t)n * sizeof *out->vertices) : NULL;
-    out->vertex_count = out->vertices ? 3 * n : 0;
-    for (uint32_t t = 0; t < n && out->vertices; t++)
+    tr_vertex* v = n ? malloc(3 * (size_t)n * sizeof *v) : NULL;
+    for (uint32_t t = 0; t < n && v; t++)
         tr_flat_triangle(&points[tris[3 * t]], &points[tris[3 * t + 1]],
-                         &points[tris[3 * t + 2]], &out->vertices[3 * t]);
+                         &points[tris[3 * t + 2]], &v[3 * t]);
     free(tris);
     free(points);
-    if (n && !out->vertices)
-        return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a hull mesh");
-    *vertices = out->vertices;
-    *vertex_count = out->vertex_count;
+    if (n && !v) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a hull mesh");
+    *vertices = v;
+    *vertex_count = v ? 3 * n : 0;
     return TB_OK;
 }
 
