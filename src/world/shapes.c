@@ -117,8 +117,10 @@ static tb_result create_mesh_buffer(tb_world* w, tb_shape_record* rec, tb_gpu_sh
 /* A compound's children stay in use while it lives. */
 static void use_children(tb_world* w, const tb_compound* c, int change)
 {
-    for (uint32_t i = 0; c && i < c->count; i++)
-        w->shapes[c->parts[i].shape].users = (uint32_t)((int64_t)w->shapes[c->parts[i].shape].users + change);
+    for (uint32_t i = 0; c && i < c->count; i++) {
+        tb_shape_record* child = &w->shapes[c->parts[i].shape];
+        child->users = (uint32_t)((int64_t)child->users + change);
+    }
 }
 
 /* Hulls (boxes too), meshes and compounds own their geometry; the hull table packs hulls

@@ -10,8 +10,6 @@
  */
 #include "instance.h"
 
-#include <stdlib.h>
-
 #define COMPOUND_KINDS 5
 
 static tb_result make_compound(tb_world* w, const tb_compound_child* c, uint32_t n,
@@ -71,21 +69,9 @@ static tb_result make_kinds(tb_world* w, uint32_t* rng, tb_shape_id kinds[COMPOU
 
 tb_result compounds_build(tb_world* w, const scene_params* params, scene_instance** out)
 {
-    *out = NULL;
-    uint32_t n = params->n;
-    pile_layout l = pile_layout_for(n);
+    pile_layout l = pile_layout_for(params->n);
     uint32_t rng = scene_rng_seed(params->seed);
     tb_shape_id kinds[COMPOUND_KINDS];
     tb_result r = make_kinds(w, &rng, kinds);
-    scene_instance* inst = r == TB_OK ? instance_alloc(n) : NULL;
-    tb_body_def* defs = malloc((n ? n : 1) * sizeof *defs);
-    if (r == TB_OK && (!inst || !defs)) r = TB_ERROR_OUT_OF_MEMORY;
-    for (uint32_t i = 0; r == TB_OK && i < n; i++) {
-        tb_body_def d = tb_default_body_def();
-        d.shape = kinds[i % COMPOUND_KINDS];
-        d.position = pile_grid_slot(&l, i, &rng);
-        d.rotation = hulls_random_rotation(&rng);
-        defs[i] = d;
-    }
-    return pile_finish(w, &l, defs, n, r, inst, out);
+    return pile_pour_turned(w, &l, kinds, COMPOUND_KINDS, params->n, &rng, r, out);
 }

@@ -81,23 +81,29 @@ tb_quat hulls_random_rotation(uint32_t* rng)
     return random_rotation(rng);
 }
 
-tb_result hulls_build(tb_world* w, const scene_params* params, scene_instance** out)
+tb_result pile_pour_turned(tb_world* w, const pile_layout* l, const tb_shape_id* shapes,
+                           uint32_t kinds, uint32_t n, uint32_t* rng, tb_result r,
+                           scene_instance** out)
 {
     *out = NULL;
-    uint32_t n = params->n;
-    pile_layout l = pile_layout_for(n);
-    uint32_t rng = scene_rng_seed(params->seed);
-    tb_shape_id shapes[HULL_SHAPES];
-    tb_result r = hulls_make_shapes(w, &rng, shapes);
     scene_instance* inst = r == TB_OK ? instance_alloc(n) : NULL;
     tb_body_def* defs = malloc((n ? n : 1) * sizeof *defs);
     if (r == TB_OK && (!inst || !defs)) r = TB_ERROR_OUT_OF_MEMORY;
     for (uint32_t i = 0; r == TB_OK && i < n; i++) {
         tb_body_def d = tb_default_body_def();
-        d.shape = shapes[i % HULL_SHAPES];
-        d.position = pile_grid_slot(&l, i, &rng);
-        d.rotation = random_rotation(&rng);
+        d.shape = shapes[i % kinds];
+        d.position = pile_grid_slot(l, i, rng);
+        d.rotation = random_rotation(rng);
         defs[i] = d;
     }
-    return pile_finish(w, &l, defs, n, r, inst, out);
+    return pile_finish(w, l, defs, n, r, inst, out);
+}
+
+tb_result hulls_build(tb_world* w, const scene_params* params, scene_instance** out)
+{
+    pile_layout l = pile_layout_for(params->n);
+    uint32_t rng = scene_rng_seed(params->seed);
+    tb_shape_id shapes[HULL_SHAPES];
+    tb_result r = hulls_make_shapes(w, &rng, shapes);
+    return pile_pour_turned(w, &l, shapes, HULL_SHAPES, params->n, &rng, r, out);
 }

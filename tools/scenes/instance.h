@@ -91,6 +91,11 @@ tb_result hulls_build(tb_world* world, const scene_params* params, scene_instanc
 tb_result hulls_make_shapes(tb_world* world, uint32_t* rng, tb_shape_id shapes[HULLS_SHAPES]);
 /// A rotation uniform over all rotations.
 tb_quat hulls_random_rotation(uint32_t* rng);
+/// The end of a pile of made shapes (r their result): n bodies, shape i % kinds, on the
+/// pile grid at rotations uniform over all, in the container (as pile_finish).
+tb_result pile_pour_turned(tb_world* world, const pile_layout* layout, const tb_shape_id* shapes,
+                           uint32_t kinds, uint32_t n, uint32_t* rng, tb_result r,
+                           scene_instance** out);
 
 /* compounds.c */
 tb_result compounds_build(tb_world* world, const scene_params* params, scene_instance** out);
