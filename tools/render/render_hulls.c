@@ -363,7 +363,7 @@ static tb_result rescan(tr_renderer* r, uint32_t slots, uint32_t live)
 {
     tb_result res = grow_slot_table(r, slots);
     if (res) return res;
-    memset(r->shape_ids, 0, slots * sizeof *r->shape_ids);
+    if (slots) memset(r->shape_ids, 0, slots * sizeof *r->shape_ids);
     tb_shape_id* live_ids = malloc((live ? live : 1) * sizeof *live_ids);
     shape_mesh* meshes = calloc(live ? live : 1, sizeof *meshes);
     if (!live_ids || !meshes) {
