@@ -2,7 +2,8 @@
  * spheres against its analytic inertia, unequal densities), and in the step on lavapipe: a
  * table of five boxes dropped on a plane settles on its four legs, bricks of two boxes
  * stack, a table stands on a triangle mesh, every broadphase finds the same child pairs,
- * and bad compounds are refused with nothing changed. */
+ * isap keeps a compound pair once from step to step, and bad compounds are refused with
+ * nothing changed. */
 #include "harness.h"
 
 #include <math.h>
@@ -276,6 +277,53 @@ static void test_broadphases_agree(void** state)
     }
 }
 
+/* No two contacts of the world are one point of one pair twice. */
+static void assert_no_repeated_contacts(tb_world* w)
+{
+    enum { MAX = 512 };
+    static tb_contact c[MAX];
+    uint32_t n = 0;
+    th_assert_ok(tb_world_read_contacts(w, c, MAX, &n));
+    assert_true(n > 0 && n <= MAX);
+    for (uint32_t i = 0; i < n; i++)
+        for (uint32_t j = i + 1; j < n; j++) {
+            int same = memcmp(&c[i].a, &c[j].a, sizeof c[i].a) == 0 &&
+                       memcmp(&c[i].b, &c[j].b, sizeof c[i].b) == 0 &&
+                       c[i].feature == c[j].feature && c[i].point.x == c[j].point.x &&
+                       c[i].point.y == c[j].point.y && c[i].point.z == c[j].point.z;
+            if (same) fail_msg("contacts %u and %u of %u are the same point of one pair", i, j, n);
+        }
+}
+
+/* isap starts each step from last step's pairs, which a compound pair left as several child
+ * pairs: it must take the body pair back once, not once per child pair (each would be split
+ * again, and the pairs multiply step by step). Compounds resting side by side, 40 steps. */
+static void test_isap_keeps_compound_pairs_once(void** state)
+{
+    (void)state;
+    tb_world_def def = tb_default_world_def();
+    def.broadphase = TB_BROADPHASE_ISAP;
+    def.gravity = th_v3(0, 0, 0);
+    tb_world* w = th_world_create(&def);
+    tb_shape_id ball = th_sphere(w, 0.2f), cube = th_box(w, th_v3(0.2f, 0.2f, 0.2f));
+    tb_compound_child c[3] = { child(ball, th_v3(0, 0, -0.45f), th_q(0, 0, 0, 1)),
+                               child(cube, th_v3(0, 0, 0), th_q(0, 0, 0, 1)),
+                               child(ball, th_v3(0, 0, 0.45f), th_q(0, 0, 0, 1)) };
+    tb_shape_id shape = compound(w, c, 3);
+    for (int i = 0; i < 4; i++) {
+        tb_body_def d = th_dynamic_def(shape, th_v3(0.399f * i, 0, 0));
+        th_body(w, &d);
+    }
+    uint32_t pairs_at_10 = 0;
+    for (int s = 0; s < 40; s++) {
+        th_assert_ok(tb_world_step(w, DT));
+        if (s == 9) pairs_at_10 = th_stats(w).pair_count;
+    }
+    assert_no_repeated_contacts(w);
+    assert_true(th_stats(w).pair_count <= pairs_at_10 + 2);
+    th_world_destroy(w);
+}
+
 static void assert_shapes_unchanged(tb_world* w, uint32_t before)
 {
     tb_shape_id ids[16];
@@ -335,6 +383,7 @@ int main(void)
         cmocka_unit_test(test_bricks_stack),
         cmocka_unit_test(test_table_on_mesh),
         cmocka_unit_test(test_broadphases_agree),
+        cmocka_unit_test(test_isap_keeps_compound_pairs_once),
         cmocka_unit_test(test_bad_compounds_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

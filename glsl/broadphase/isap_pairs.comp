@@ -104,7 +104,8 @@ void scan_moves(uint i)
 }
 
 // Last step's pairs of i's run that are still wanted (pairs with large bodies excepted:
-// search_large finds those again).
+// search_large finds those again). A body pair split by children or triangles left several
+// pairs in a row: it is taken back once, at its first (reported again, it is split again).
 void keep_old(uint i)
 {
     uint h = isap_old_half();
@@ -113,6 +114,7 @@ void keep_old(uint i)
     uint base = h * params.capacity.x + run.x;
     for (uint t = 0u; t < run.y; t++) {
         uvec2 pair = pairs[base + t].xy;
+        if (t > 0u && pairs[base + t - 1u].xy == pair) continue;
         uint j = pair.x == i ? pair.y : pair.x;
         if (!isap_large(j) && bp_wanted(pair.x, pair.y)) bp_report(pair.x, pair.y);
     }
