@@ -269,8 +269,11 @@ static void test_broadphases_agree(void** state)
         counts[k] = s.pair_count;
         points[k] = s.contact_count;
         assert_true(points[k] >= 8);
+        /* isap also keeps the body pairs none of whose children touch (it starts the next
+         * step from this step's pairs), as pairs without points. */
         if (k) {
-            assert_int_equal(counts[k], counts[0]);
+            if (kinds[k] == TB_BROADPHASE_ISAP) assert_true(counts[k] >= counts[0]);
+            else assert_int_equal(counts[k], counts[0]);
             assert_int_equal(points[k], points[0]);
         }
         th_world_destroy(w);

@@ -9,7 +9,8 @@
 // The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry; the write
 // pass writes an entry that found no more from them instead of walking again (the walk is
 // most of the search). A mesh body's pairs are one per triangle, not one per partner: an
-// entry that meets one caches nothing (slot 0 says so) and the write pass walks again.
+// entry that meets one caches nothing (slot 0 says so) and the write pass walks again (a
+// compound pair is one record here; the compound split divides it later).
 // The count pass also clears the scene bounds for the next step.
 #include "world.glsl"
 #include "pairs.glsl"
@@ -21,9 +22,8 @@ uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIR
 void report(uint i, uint j)
 {
     if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
-        // A mesh or compound partner splits into many pairs: no cache for this entry.
-        bool many = body_is(j, TB_BODY_FLAG_MESH) || body_is(j, TB_BODY_FLAG_COMPOUND) ||
-                    body_is(i, TB_BODY_FLAG_COMPOUND);
+        // A mesh partner splits into many pairs: no cache for this entry.
+        bool many = body_is(j, TB_BODY_FLAG_MESH);
         lbvh_cache().v[(many ? 0u : partners) * lbvh_capacity() + entry] = many ? TB_LBVH_END : j;
         partners = many ? TB_LBVH_CACHED_PAIRS : partners + 1u;
     }

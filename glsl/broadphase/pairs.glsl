@@ -11,9 +11,11 @@
 // (grown by the contact margin) touches, as (a, b, TB_NO_COLOUR, triangle + 1): the midphase
 // of meshes, done where the pair is found so the narrowphase and the solver see one convex
 // pair per triangle and the four broadphases share it. Mesh bodies are large to every
-// broadphase, so only the plain walks over large bodies meet them. A pair with a compound
-// body is likewise reported once per pair of children whose boxes touch (and per child and
-// triangle against a mesh); layout.h, TB_PAIR_TRIANGLE_BITS, says how pairs[].w holds them.
+// broadphase, so only the plain walks over large bodies meet them; against a compound,
+// once per child and triangle. A pair of a compound and a body other than a mesh is
+// reported once, as (a, b, TB_NO_COLOUR, TB_PAIR_UNSPLIT), and split by pairs of children
+// after the search, one thread a pair (glsl/midphase/split.glsl); layout.h,
+// TB_PAIR_TRIANGLE_BITS, says how pairs[].w holds children and triangles.
 #ifndef TB_PAIRS_GLSL
 #define TB_PAIRS_GLSL
 
@@ -113,46 +115,11 @@ void bp_report_triangles(uint a, uint b)
     }
 }
 
-// The pairs of (a, b), one of them a compound: one per pair of parts (children, or the
-// body itself) that may touch within the step, as (a, b, TB_NO_COLOUR, a's child | b's
-// child << 16). A child of a whose box misses b's is skipped whole; the rest meet b's parts
-// as oriented boxes (a rotated thin child's axis-aligned box is several times its size).
-// The tests run in one order of the two bodies (lower index first), so every broadphase,
-// whichever body it finds the pair from, splits it into the same child pairs.
-void bp_report_parts(uint a, uint b)
-{
-    bool flip = a > b;
-    uint first = flip ? b : a, second = flip ? a : b;
-    part_frame f1 = part_frame_of(first), f2 = part_frame_of(second);
-    float half_margin = 0.5 * params.contact.x;
-    // The second's parts whose boxes touch the first's box: bits of a 64-bit mask.
-    uvec2 near = uvec2(0u);
-    for (uint j = 0u; j < f2.parts; j++) {
-        vec3 lo, hi;
-        frame_part_box(f2, j, params.contact.x, lo, hi);
-        if (boxes_touch(lo, hi, body_aabb_min[first].xyz, body_aabb_max[first].xyz))
-            near[j >> 5] |= 1u << (j & 31u);
-    }
-    for (uint i = 0u; i < f1.parts && near != uvec2(0u); i++) {
-        vec3 lo, hi;
-        frame_part_box(f1, i, params.contact.x, lo, hi);
-        if (!boxes_touch(lo, hi, body_aabb_min[second].xyz, body_aabb_max[second].xyz)) continue;
-        oriented_box box1 = part_oriented_box(f1, i, half_margin);
-        for (uvec2 left = near; left != uvec2(0u);) {
-            uint word = left.x != 0u ? 0u : 1u;
-            uint j = 32u * word + uint(findLSB(left[word]));
-            left[word] &= left[word] - 1u;
-            if (oriented_boxes_touch(box1, part_oriented_box(f2, j, half_margin)))
-                bp_put(a, b, flip ? j | (i << 16) : i | (j << 16));
-        }
-    }
-}
-
 // Report the pair (a, b), in the order the output keeps for it.
 void bp_report(uint a, uint b)
 {
     if (body_is(a, TB_BODY_FLAG_MESH) || body_is(b, TB_BODY_FLAG_MESH)) bp_report_triangles(a, b);
-    else if (body_is(a, TB_BODY_FLAG_COMPOUND) || body_is(b, TB_BODY_FLAG_COMPOUND)) bp_report_parts(a, b);
+    else if (body_is(a, TB_BODY_FLAG_COMPOUND) || body_is(b, TB_BODY_FLAG_COMPOUND)) bp_put(a, b, TB_PAIR_UNSPLIT);
     else bp_put(a, b, 0u);
 }
 

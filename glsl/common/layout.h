@@ -201,7 +201,8 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 state;           /* x TB_ABORT_* flags, y steps completed on the GPU (parity = y & 1),
                                  z pairs this step, w pairs needed (valid after an overflow) */
     TB_UVEC4 grid;            /* x largest dynamic AABB extent (float bits), y large bodies,
-                                 z entries sorted (body slots), w unused */
+                                 z entries sorted (body slots), w the compound split's sum of
+                                 pairs, then the broadphase's records (glsl/midphase/split.glsl) */
     TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
                                  counts every constraint here, colour_finish subtracts the
                                  coloured ones), z batches (subgroup-wide), w contact points */
@@ -591,13 +592,17 @@ TB_STRUCT(tb_gpu_compound_child) {
     TB_VEC4 box_half;         /* xyz half extents */
 };
 
-/* Which part of its bodies a pair is (pairs[].w, written where the pair is found): a pair
- * with a mesh body holds its triangle + 1 in the low TB_PAIR_TRIANGLE_BITS bits and, when
- * the other body is a compound, the child's index above them; a pair without a mesh body
- * holds body a's child index in the low 16 bits and body b's in the high 16 (0 for a body
- * that is not a compound). */
+/* Which part of its bodies a pair is (pairs[].w, written where the pair is found or split):
+ * a pair with a mesh body holds its triangle + 1 in the low TB_PAIR_TRIANGLE_BITS bits and,
+ * when the other body is a compound, the child's index above them; a pair without a mesh
+ * body holds body a's child index in the low 16 bits and body b's in the high 16 (0 for a
+ * body that is not a compound). */
 #define TB_PAIR_TRIANGLE_BITS     25
 #define TB_PAIR_TRIANGLE_MASK     ((TB_U(1) << TB_PAIR_TRIANGLE_BITS) - TB_U(1))
+/* The broadphase's record of a pair of a compound and a body other than a mesh, before the
+ * compound split (glsl/midphase/split.glsl) replaces it by its child pairs; after the split,
+ * a body pair none of whose parts touch (its manifold is empty). */
+#define TB_PAIR_UNSPLIT           TB_U(0xffffffff)
 
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {

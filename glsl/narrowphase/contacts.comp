@@ -53,9 +53,23 @@ uint np_collide(np_target t, np_body first, np_body second, float margin, out ve
     return np_hull_hull_deferred(t, first, second, margin);
 }
 
+// A compound pair whose parts are all apart (the split kept it whole, TB_PAIR_UNSPLIT):
+// an empty manifold.
+void apart_parts(uint p, uvec4 pair)
+{
+    np_target t = np_target(p, NP_NONE, 0u, uvec4(0u));
+    manifolds[p].axis = uvec4(0u);
+    np_finish(t, 0u, vec3(0.0), pair.x, pair.y, 0.0, 0.0);
+}
+
 // Writes the manifold of pair p; returns its point count.
 uint pair_contacts(uint p)
 {
+    uvec4 pair = pairs[pair_half_base() + p];
+    if (pair.w == TB_PAIR_UNSPLIT) {
+        apart_parts(p, pair);
+        return 0u;
+    }
     np_pair q = np_pair_load(p);
     vec3 normal;
     // The separating axis a hull pair caches for the next step; other pairs have none. The

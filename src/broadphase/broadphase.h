@@ -80,6 +80,9 @@ typedef struct tb_broadphase_ops {
     /// (the step records the pair output around them).
     tb_result (*record)(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadphase_search* search);
     void (*destroy)(tb_broadphase_ctx* bp);
+    /// Its search starts from last step's pairs (isap): the compound split keeps a body pair
+    /// none of whose parts touch (compound_split.h), so the pair stays in that list.
+    int reads_last_pairs;
 } tb_broadphase_ops;
 
 extern const tb_broadphase_ops tb_broadphase_grid;

@@ -134,5 +134,5 @@ static tb_result isap_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broad
 }
 
 const tb_broadphase_ops tb_broadphase_isap = {
-    "isap", "broadphase/isap", isap_create, isap_reserve, isap_record, isap_destroy,
+    "isap", "broadphase/isap", isap_create, isap_reserve, isap_record, isap_destroy, 1,
 };

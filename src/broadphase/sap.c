@@ -114,5 +114,5 @@ static tb_result sap_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadp
 }
 
 const tb_broadphase_ops tb_broadphase_sap = {
-    "sap", "broadphase/sap", sap_create, sap_reserve, sap_record, sap_destroy,
+    "sap", "broadphase/sap", sap_create, sap_reserve, sap_record, sap_destroy, 0,
 };

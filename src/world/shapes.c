@@ -85,6 +85,14 @@ static void count_mesh_shape(tb_world* w, int change)
     if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
 }
 
+/* Likewise the compound split while compound shapes exist. */
+static void count_compound_shape(tb_world* w, int change)
+{
+    uint32_t before = w->compound_shapes;
+    w->compound_shapes = (uint32_t)((int64_t)before + change);
+    if ((before == 0) != (w->compound_shapes == 0)) w->step_built = 0;
+}
+
 /* The GPU image of a mesh, heightfield or compound: its bytes, and the image written at dst. */
 static VkDeviceSize image_bytes(const tb_shape_record* rec)
 {
@@ -139,6 +147,7 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* g
         return r;
     }
     if (triangles) count_mesh_shape(w, +1);
+    if (rec->compound) count_compound_shape(w, +1);
     if (imaged) w->mesh_uploads++;
     use_children(w, rec->compound, +1);
     if (!rec->hull) return TB_OK;
@@ -174,6 +183,7 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     if (s->hull) w->narrowphase.hulls.dirty = 1;
     if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
     use_children(w, s->compound, -1);
+    if (s->compound) count_compound_shape(w, -1);
     if (s->mesh || s->heightfield) count_mesh_shape(w, -1);
     if (s->mesh || s->heightfield || s->compound) {
         if (s->mesh_pending) w->mesh_uploads--;

@@ -1,6 +1,8 @@
 /* The step's GPU-only buffers: creation, growth, binding. */
 #include "world/sim.h"
 
+#include "broadphase/compound_split.h"
+
 #include <string.h>
 
 #define USAGE (VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | \
@@ -24,7 +26,7 @@ static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
     [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
     [TB_SIM_TAIL_SCRATCH] = UINT32_MAX, [TB_SIM_EVENT_MARKS] = UINT32_MAX,
-    [TB_SIM_BLOCK_ENTRIES] = UINT32_MAX,
+    [TB_SIM_BLOCK_ENTRIES] = UINT32_MAX, [TB_SIM_SPLIT] = UINT32_MAX,
 };
 
 /* Bytes per body of each per-body buffer (the table and scratch are sized apart). */
@@ -59,6 +61,7 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
+    case TB_SIM_SPLIT: return tb_compound_split_bytes(sim->prims, capacity);
     case TB_SIM_BLOCK_ENTRIES:
         return sim->block_lists ? 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8 : 0;
     default: return (VkDeviceSize)capacity * 4;

@@ -24,7 +24,7 @@ typedef enum tb_sim_body_buffer {
 typedef enum tb_sim_pair_buffer {
     TB_SIM_PAIRS, TB_SIM_MANIFOLDS, TB_SIM_CONSTRAINTS, TB_SIM_COLOUR_LIST, TB_SIM_COLOUR_WORK,
     TB_SIM_PREV_MANIFOLDS, TB_SIM_TAIL_SCRATCH, TB_SIM_EVENT_MARKS, TB_SIM_BLOCK_ENTRIES,
-    TB_SIM_PAIR_BUFFER_COUNT
+    TB_SIM_SPLIT, TB_SIM_PAIR_BUFFER_COUNT
 } tb_sim_pair_buffer;
 
 typedef struct tb_sim {

@@ -58,6 +58,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_world_plugins_init(w);
     w->bp.kit = w->kit;
+    w->split.kit = w->kit;
     if (!r) r = tb_broadphase_shared_create(&w->bp);
     if (!r) r = w->broadphase->create(&w->bp);
     tb_step_broadphase_io(w);
@@ -113,6 +114,7 @@ void tb_world_free(tb_world* w)
         tb_step_kernels_destroy(w);
         if (w->broadphase) w->broadphase->destroy(&w->bp);
         tb_broadphase_shared_destroy(&w->bp);
+        tb_compound_split_destroy(&w->split);
         tb_solver_destroy(&w->solver);
         tb_block_destroy(&w->block);
         tb_sim_destroy(&w->sim);

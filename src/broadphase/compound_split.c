@@ -1,0 +1,84 @@
+/* The compound split's passes (compound_split.h). */
+#include "broadphase/compound_split.h"
+
+#include <stddef.h>
+#include <string.h>
+
+#include "layout.h"
+
+/* Where the split buffer's parts start. */
+static VkDeviceSize counts_at(uint32_t capacity)
+{
+    return (VkDeviceSize)capacity * 16;
+}
+
+static VkDeviceSize scratch_at(uint32_t capacity)
+{
+    VkDeviceSize end = counts_at(capacity) + (VkDeviceSize)capacity * 4;
+    return (end + 255) & ~(VkDeviceSize)255;
+}
+
+VkDeviceSize tb_compound_split_bytes(const tb_prims* prims, uint32_t pair_capacity)
+{
+    return scratch_at(pair_capacity) + tb_prims_scan_scratch(prims, pair_capacity);
+}
+
+static tb_result make(tb_compound_split* s, const char* name, VkPipeline* out)
+{
+    if (*out) return TB_OK;
+    return tb_pipeline_create(s->kit.pipelines, name, TB_WORKGROUP_SIZE, out);
+}
+
+static tb_result make_all(tb_compound_split* s)
+{
+    tb_result r = make(s, "midphase/split_count", &s->count);
+    if (!r) r = make(s, "midphase/split_check", &s->check);
+    if (!r) r = make(s, "midphase/split_write", &s->write);
+    if (!r) r = make(s, "midphase/split_runs", &s->runs);
+    if (!r) r = make(s, "midphase/split_copy", &s->copy);
+    return r;
+}
+
+/* A pass of a split kernel: whether apart body pairs are kept, and the split pairs' and
+ * counts' addresses, in its push constants. */
+static tb_result add(tb_compound_split* s, tb_pass_list* list, VkPipeline pipeline,
+                     tb_dispatch_rule rule, const tb_compound_split_io* io)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, rule, io->counters->buffer,
+                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0);
+    tb_gpu_broadphase_push push;
+    memset(&push, 0, sizeof push);
+    push.args.x = io->keep_apart ? 1u : 0u;
+    push.address[0] = tb_gpu_addresses(tb_gpu_ptr_of(io->split, 0).address,
+                                       tb_gpu_ptr_of(io->split, counts_at(io->pair_capacity)).address);
+    pass.push_size = sizeof push;
+    memcpy(pass.push, &push, sizeof push);
+    return tb_pass_list_add(list, s->kit.diag, &pass);
+}
+
+tb_result tb_compound_split_record(tb_compound_split* s, tb_pass_list* list,
+                                   const tb_compound_split_io* io)
+{
+    tb_result r = make_all(s);
+    uint32_t capacity = io->pair_capacity;
+    tb_gpu_ptr counts = tb_gpu_ptr_of(io->split, counts_at(capacity));
+    tb_gpu_ptr scratch = tb_gpu_ptr_of(io->split, scratch_at(capacity));
+    tb_gpu_ptr records = tb_gpu_ptr_of(io->counters, offsetof(tb_gpu_counters, state) + 8);
+    tb_gpu_ptr total = tb_gpu_ptr_of(io->counters, offsetof(tb_gpu_counters, grid) + 12);
+    if (!r) r = add(s, list, s->count, TB_DISPATCH_INDIRECT, io);
+    if (!r) r = tb_prims_scan(s->kit.prims, list, counts, counts, records, capacity, total,
+                              scratch);
+    if (!r) r = add(s, list, s->check, TB_DISPATCH_FIXED, io);
+    if (!r) r = add(s, list, s->write, TB_DISPATCH_INDIRECT, io);
+    if (!r) r = add(s, list, s->runs, TB_DISPATCH_PER_BODY, io);
+    if (!r) r = add(s, list, s->copy, TB_DISPATCH_INDIRECT, io);
+    return r;
+}
+
+void tb_compound_split_destroy(tb_compound_split* s)
+{
+    VkPipeline all[] = { s->count, s->check, s->write, s->runs, s->copy };
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
+        tb_pipeline_destroy(s->kit.pipelines, all[i]);
+    memset(&s->count, 0, 5 * sizeof(VkPipeline));
+}
