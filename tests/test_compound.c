@@ -2,7 +2,8 @@
  * spheres against its analytic inertia, unequal densities), and in the step on lavapipe: a
  * table of five boxes dropped on a plane settles on its four legs, bricks of two boxes
  * stack, a table stands on a triangle mesh, every broadphase finds the same child pairs,
- * isap keeps a compound pair once from step to step, and bad compounds are refused with
+ * a split that overflows the pair buffers grows them, isap keeps a compound pair once from
+ * step to step, and bad compounds are refused with
  * nothing changed. */
 #include "harness.h"
 
@@ -239,10 +240,28 @@ static void test_table_on_mesh(void** state)
     th_world_destroy(w);
 }
 
+/* A heap of compounds placed touching, on a plane, in a world of `def`. */
+static tb_world* compound_heap(const tb_world_def* def)
+{
+    tb_world* w = th_world_create(def);
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_id ball = th_sphere(w, 0.2f), cube = th_box(w, th_v3(0.2f, 0.2f, 0.2f));
+    tb_compound_child c[3] = { child(ball, th_v3(-0.3f, 0, 0), th_q(0, 0, 0, 1)),
+                               child(cube, th_v3(0.3f, 0, 0), th_q(0, 0, 0, 1)),
+                               child(ball, th_v3(0, 0.4f, 0), th_q(0, 0, 0, 1)) };
+    tb_shape_id shape = compound(w, c, 3);
+    for (int i = 0; i < 8; i++) {
+        tb_body_def d = th_dynamic_def(shape, th_v3(0.3f * (i % 3), 0.3f + 0.45f * i, 0.2f * (i % 2)));
+        th_body(w, &d);
+    }
+    return w;
+}
+
 /* Every broadphase splits the same body pairs into the same child pairs (each has its own
  * paths to the pair output: sap's third gear writes for other lanes' finders): a first
- * step over a heap of compounds placed touching (later steps differ with the pair order
- * the solver meets, as for any shapes). */
+ * step over the heap (later steps differ with the pair order the solver meets, as for any
+ * shapes). */
 static void test_broadphases_agree(void** state)
 {
     (void)state;
@@ -252,18 +271,7 @@ static void test_broadphases_agree(void** state)
     for (int k = 0; k < 4; k++) {
         tb_world_def def = tb_default_world_def();
         def.broadphase = kinds[k];
-        tb_world* w = th_world_create(&def);
-        tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
-        th_body(w, &ground);
-        tb_shape_id ball = th_sphere(w, 0.2f), cube = th_box(w, th_v3(0.2f, 0.2f, 0.2f));
-        tb_compound_child c[3] = { child(ball, th_v3(-0.3f, 0, 0), th_q(0, 0, 0, 1)),
-                                   child(cube, th_v3(0.3f, 0, 0), th_q(0, 0, 0, 1)),
-                                   child(ball, th_v3(0, 0.4f, 0), th_q(0, 0, 0, 1)) };
-        tb_shape_id shape = compound(w, c, 3);
-        for (int i = 0; i < 8; i++) {
-            tb_body_def d = th_dynamic_def(shape, th_v3(0.3f * (i % 3), 0.3f + 0.45f * i, 0.2f * (i % 2)));
-            th_body(w, &d);
-        }
+        tb_world* w = compound_heap(&def);
         th_assert_ok(tb_world_step(w, DT));
         tb_world_stats s = th_stats(w);
         counts[k] = s.pair_count;
@@ -278,6 +286,29 @@ static void test_broadphases_agree(void** state)
         }
         th_world_destroy(w);
     }
+}
+
+/* Room for the broadphase's records (nine bodies make at most 36 pairs) but for fewer pairs
+ * than the split makes of them: the step is run again with room for them, and ends as it
+ * does with room from the start. */
+static void test_split_overflow_grows(void** state)
+{
+    (void)state;
+    tb_world_def def = tb_default_world_def();
+    tb_world* roomy = compound_heap(&def);
+    def.initial_pair_capacity = 40;
+    tb_world* tight = compound_heap(&def);
+    for (int s = 0; s < 3; s++) {
+        th_assert_ok(tb_world_step(roomy, DT));
+        th_assert_ok(tb_world_step(tight, DT));
+    }
+    tb_world_stats a = th_stats(roomy), b = th_stats(tight);
+    assert_true(a.pair_count > 40);
+    assert_true(b.steps_redone > 0);
+    assert_int_equal(b.pair_count, a.pair_count);
+    assert_int_equal(b.contact_count, a.contact_count);
+    th_world_destroy(roomy);
+    th_world_destroy(tight);
 }
 
 /* No two contacts of the world are one point of one pair twice. */
@@ -386,6 +417,7 @@ int main(void)
         cmocka_unit_test(test_bricks_stack),
         cmocka_unit_test(test_table_on_mesh),
         cmocka_unit_test(test_broadphases_agree),
+        cmocka_unit_test(test_split_overflow_grows),
         cmocka_unit_test(test_isap_keeps_compound_pairs_once),
         cmocka_unit_test(test_bad_compounds_refused),
     };
