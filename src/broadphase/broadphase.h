@@ -3,7 +3,9 @@
  * Every broadphase writes the same output, so the narrowphase, the warm start and the
  * solver do not know which one ran:
  * - each pair whose AABBs overlap (each grown by half the contact margin) and that is not
- *   static-static, exactly once, as pairs[half base + p] = (a, b, TB_NO_COLOUR, 0);
+ *   static-static, exactly once, as pairs[half base + p] = (a, b, TB_NO_COLOUR, 0); a pair
+ *   with a mesh once per triangle, and a pair with a compound once as TB_PAIR_UNSPLIT,
+ *   which the compound split (compound_split.h) then divides by children;
  * - grouped by a "finder" body, which is a or b of each of its pairs: body_pairs[finder]
  *   holds the run's (offset, count) of this half (xy for even steps, zw for odd), for every
  *   body slot (count 0 when it found none), so last step's pair (a, b) is found in the run
