@@ -484,7 +484,8 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_UVEC4 feature;         /* feature key of each point: which features of a and b touch */
     TB_UVEC4 axis;            /* the separating-axis test's choice, cached for the next step:
                                  x the axis (its kind and features, narrowphase-defined; 0 none),
-                                 y its separation (float bits), z while its points are
+                                 y its separation (float bits; for a touching hull pair how far
+                                 the two moved since it was chosen), z while its points are
                                  left to narrowphase/hull_points the axis of largest
                                  separation (never 0), w the block solver's stiffness of
                                  the pair (float bits; see glsl/block/) */

@@ -4,6 +4,11 @@
 //
 // 1. Last step's axis (tb_gpu_manifold.axis of the pair): still separating by the margin or
 //    more, the pair has no contact and nothing else is tested.
+//    1b. A pair whose points last step came from that axis (their feature keys name it)
+//    keeps it while the two have moved less than NP_KEEP_AXIS_MOTION against each other
+//    since it was chosen (axis.y sums the pair's closing motion and turn reach step by
+//    step), and goes straight to step 4: a resting pile repeats no separating axis test.
+//    The points are clipped afresh every step; only the choice of axis waits.
 // 2. The separating axis test (hull_sat.glsl), stopping at the first separating axis,
 //    which becomes the cached axis.
 // 3. The reference axis: A's best face, unless B's is clearly better, unless the best edge
@@ -16,6 +21,10 @@
 #ifndef TB_NP_HULL_HULL_GLSL
 #define TB_NP_HULL_HULL_GLSL
 
+// How far (m) two hulls may move against each other (their closing motion and the reach of
+// their turns, summed step by step) before a touching pair's axis is chosen again.
+#define NP_KEEP_AXIS_MOTION 5.0e-3
+
 // The axis of largest separation among the three candidates, without the tie rule (faces
 // of A, then of B, then edges on exact ties).
 uint np_strict_axis(float sep_a, uint face_a, float sep_b, uint face_b, float sep_e,
@@ -24,6 +33,15 @@ uint np_strict_axis(float sep_a, uint face_a, float sep_b, uint face_b, float se
     if (sep_e > sep_a && sep_e > sep_b) return np_axis_code(NP_AXIS_EDGES, edge_a, edge_b);
     if (sep_b > sep_a) return np_axis_code(NP_AXIS_FACE_B, 0u, face_b);
     return np_axis_code(NP_AXIS_FACE_A, 0u, face_a);
+}
+
+// The axis a point's feature key (hull_clip.glsl) was made along: an edge pair's, or the
+// reference face's.
+uint np_axis_of_feature(uint key)
+{
+    if ((key & 0x80000000u) != 0u) return np_axis_code(NP_AXIS_EDGES, 0u, 0u) | (key & 0x3fffffffu);
+    uint kind = (key & 0x40000000u) != 0u ? NP_AXIS_FACE_B : NP_AXIS_FACE_A;
+    return np_axis_code(kind, 0u, (key >> 22u) & 0xffu);
 }
 
 // Steps 1-3: the axis, cached in the manifold. True when the pair touches within the margin
@@ -42,6 +60,15 @@ bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint
         if (s >= margin) {
             np_set_axis(t, cached, s);
             return false;
+        }
+        // Step 1b: a pair that had points keeps the axis they came from while the two have
+        // moved less than NP_KEEP_AXIS_MOTION against each other since it was chosen (axis.y).
+        float moved = uintBitsToFloat(prev_manifolds[t.prev].axis.y) + margin - params.contact.x;
+        if (t.prev_count > 0u && s > -NP_BIG && moved < NP_KEEP_AXIS_MOTION &&
+            np_axis_of_feature(t.prev_features.x) == cached) {
+            np_set_axis(t, cached, moved);
+            strict = cached;
+            return true;
         }
     }
 
@@ -64,15 +91,12 @@ bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint
 
     bool ref_b = np_clearly_better(sep_b, sep_a);
     uint kept = np_axis_code(NP_AXIS_FACE_A, 0u, face_a);
-    float kept_sep = sep_a;
     if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a)) {
         kept = np_axis_code(NP_AXIS_EDGES, edge_a, edge_b);
-        kept_sep = sep_e;
     } else if (ref_b) {
         kept = np_axis_code(NP_AXIS_FACE_B, 0u, face_b);
-        kept_sep = sep_b;
     }
-    np_set_axis(t, kept, kept_sep);
+    np_set_axis(t, kept, 0.0);
     // Only an overlap is sure to lie over the strict axis's features; hulls apart may be
     // nearest at corners no axis names, and the kept axis's speculative points (or none)
     // are as good as any.
@@ -111,8 +135,10 @@ uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, uint stri
                          float margin, out vec3 normal)
 {
     uint count = np_hull_hull_points_on(t, a, b, code, margin, normal);
-    if (count == 0u && strict != code)
+    if (count == 0u && strict != code) {
         count = np_hull_hull_points_on(t, a, b, strict, margin, normal);
+        if (count > 0u) manifolds[t.slot].axis.x = strict;   // the axis step 1b keeps
+    }
     return count;
 }
 

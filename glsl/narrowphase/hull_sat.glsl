@@ -16,7 +16,8 @@
 //
 // Axis codes (tb_gpu_manifold.axis.x; 0 is none): bits 30-31 the kind, NP_AXIS_FACE_A
 // (bits 0-14 A's face), NP_AXIS_FACE_B (B's face) or NP_AXIS_EDGES (bits 15-29 A's edge,
-// bits 0-14 B's edge). axis.y holds the separation along it (float bits).
+// bits 0-14 B's edge). axis.y holds the separation along it (float bits) for a pair apart,
+// and for a touching pair how far the two moved since the axis was chosen (hull_hull.glsl).
 #ifndef TB_NP_HULL_SAT_GLSL
 #define TB_NP_HULL_SAT_GLSL
 
