@@ -8,9 +8,8 @@
 // stored as (lower slot, higher slot) whoever finds them. Large and dead entries find none.
 // The count pass keeps the first TB_LBVH_CACHED_PAIRS partners of each entry; the write
 // pass writes an entry that found no more from them instead of walking again (the walk is
-// most of the search). A mesh body's pairs are one per triangle, not one per partner: an
-// entry that meets one caches nothing (slot 0 says so) and the write pass walks again (a
-// compound pair is one record here; the compound split divides it later).
+// most of the search). A pair with a mesh or compound body is one record here too; the
+// midphase split divides it later.
 // The count pass also clears the scene bounds for the next step.
 #include "world.glsl"
 #include "pairs.glsl"
@@ -22,10 +21,8 @@ uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIR
 void report(uint i, uint j)
 {
     if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
-        // A mesh partner splits into many pairs: no cache for this entry.
-        bool many = body_is(j, TB_BODY_FLAG_MESH);
-        lbvh_cache().v[(many ? 0u : partners) * lbvh_capacity() + entry] = many ? TB_LBVH_END : j;
-        partners = many ? TB_LBVH_CACHED_PAIRS : partners + 1u;
+        lbvh_cache().v[partners * lbvh_capacity() + entry] = j;
+        partners++;
     }
     bp_report(min(i, j), max(i, j));
 }
@@ -42,7 +39,6 @@ bool write_cached(uint i, uint slots)
 {
     uint found = pairs_counted(i, slots);
     if (found > TB_LBVH_CACHED_PAIRS) return false;
-    if (found > 0u && lbvh_cache().v[entry] == TB_LBVH_END) return false;   // met a split pair
     for (uint k = 0u; k < found; k++) {
         uint j = lbvh_cache().v[k * lbvh_capacity() + entry];
         bp_report(min(i, j), max(i, j));

@@ -153,17 +153,14 @@ void sweep_together()
             uvec4 tmax = uvec4(0u);
             if (inside) tmax = box_max.v[t];
             bool hit = inside && pairs_with(lmin, lmax, lflags, tmin, tmax);
-            // A compound's body pair splits into its child pairs, each hit into its own
-            // count of pairs, written after the lanes before it. (Mesh bodies are large:
-            // never swept.)
+            // A compound's body pair is one record for the midphase to split (split.glsl).
+            // (Mesh bodies are large: never swept.)
             uint a = min(lmin.w, tmin.w), b = max(lmin.w, tmin.w);
-            bool split = hit && ((lflags | tmax.w) & TB_SAP_BOX_SPLIT) != 0u;
-            uint count = split ? bp_report_count(a, b) : (hit ? 1u : 0u);
+            bool split = ((lflags | tmax.w) & TB_SAP_BOX_SPLIT) != 0u;
+            uint count = hit ? 1u : 0u;
             uint at = base + found + subgroupExclusiveAdd(count);
-            if (hit && bp_writing()) {
-                if (split) bp_report_at(a, b, at);
-                else pairs[pair_half_base() + at] = uvec4(a, b, TB_NO_COLOUR, 0u);
-            }
+            if (hit && bp_writing())
+                pairs[pair_half_base() + at] = uvec4(a, b, TB_NO_COLOUR, split ? TB_PAIR_UNSPLIT : 0u);
             found += subgroupAdd(count);
             if (!subgroupAll(inside) || found == wanted) break;
         }

@@ -201,7 +201,7 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 state;           /* x TB_ABORT_* flags, y steps completed on the GPU (parity = y & 1),
                                  z pairs this step, w pairs needed (valid after an overflow) */
     TB_UVEC4 grid;            /* x largest dynamic AABB extent (float bits), y large bodies,
-                                 z entries sorted (body slots), w the compound split's sum of
+                                 z entries sorted (body slots), w the midphase split's sum of
                                  pairs, then the broadphase's records (glsl/midphase/split.glsl) */
     TB_UVEC4 solver;          /* x colours used, y constraints left uncoloured (colouring round 0
                                  counts every constraint here, colour_finish subtracts the
@@ -600,9 +600,9 @@ TB_STRUCT(tb_gpu_compound_child) {
  * body that is not a compound). */
 #define TB_PAIR_TRIANGLE_BITS     25
 #define TB_PAIR_TRIANGLE_MASK     ((TB_U(1) << TB_PAIR_TRIANGLE_BITS) - TB_U(1))
-/* The broadphase's record of a pair of a compound and a body other than a mesh, before the
- * compound split (glsl/midphase/split.glsl) replaces it by its child pairs; after the split,
- * a body pair none of whose parts touch (its manifold is empty). */
+/* The broadphase's record of a pair with a mesh or compound body, before the midphase split
+ * (glsl/midphase/split.glsl) replaces it by its triangle or child pairs; after the split,
+ * a compound pair none of whose parts touch, kept for isap (its manifold is empty). */
 #define TB_PAIR_UNSPLIT           TB_U(0xffffffff)
 
 /* A shape as the GPU sees it. */

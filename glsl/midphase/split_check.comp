@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The compound split (split.glsl), after the scan: abandon the step when the split pairs do
+// The midphase split (split.glsl), after the scan: abandon the step when the split pairs do
 // not fit (the host grows the pair buffers and runs the step again); else the split's
 // total becomes the step's pair count, and the broadphase's record count moves to
 // counters.grid.w for the passes that still read the records.

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The compound split (split.glsl), last pass: the split pairs copied into this step's half
+// The midphase split (split.glsl), last pass: the split pairs copied into this step's half
 // of the pair array, where the narrowphase reads them. One thread a pair, dispatched over
 // counters.pair_dispatch (now the split pairs').
 #include "world.glsl"

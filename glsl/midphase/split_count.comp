@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The compound split (split.glsl), first pass: how many pairs each of the broadphase's
+// The midphase split (split.glsl), first pass: how many pairs each of the broadphase's
 // records becomes. One thread a record, dispatched over counters.pair_dispatch; a scan
 // then turns the counts into offsets and their sum into counters.grid.w.
 #include "world.glsl"
@@ -12,5 +12,5 @@ void main()
     uint p = pair_thread_index();
     if (p >= counters.state.z) return;
     uvec4 pair = pairs[pair_half_base() + p];
-    split_counts[p] = pair.w == TB_PAIR_UNSPLIT ? split_parts(pair.x, pair.y, false, 0u) : 1u;
+    split_counts[p] = split_record(pair, false, 0u);
 }

@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The compound split (split.glsl), third pass: each finder's run of this half moved to
+// The midphase split (split.glsl), third pass: each finder's run of this half moved to
 // where its records' pairs now start, and as long as they are; the per-pair dispatches
 // sized for the split pairs. One thread a body slot.
 #include "world.glsl"

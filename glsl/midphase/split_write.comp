@@ -1,6 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// The compound split (split.glsl), second pass: each record's pairs written at its offset in
+// The midphase split (split.glsl), second pass: each record's pairs written at its offset in
 // the split pairs, in the record's order, so every finder's run stays whole and in order.
 // One thread a record, dispatched over counters.pair_dispatch (still the records').
 #include "world.glsl"
@@ -11,8 +11,5 @@ void main()
     if (step_aborted()) return;
     uint p = pair_thread_index();
     if (p >= counters.grid.w) return;
-    uvec4 pair = pairs[pair_half_base() + p];
-    uint at = split_counts[p];
-    if (pair.w == TB_PAIR_UNSPLIT) split_parts(pair.x, pair.y, true, at);
-    else split_pairs[at] = pair;
+    split_record(pairs[pair_half_base() + p], true, split_counts[p]);
 }

@@ -4,8 +4,8 @@
  * solver do not know which one ran:
  * - each pair whose AABBs overlap (each grown by half the contact margin) and that is not
  *   static-static, exactly once, as pairs[half base + p] = (a, b, TB_NO_COLOUR, 0); a pair
- *   with a mesh once per triangle, and a pair with a compound once as TB_PAIR_UNSPLIT,
- *   which the compound split (compound_split.h) then divides by children;
+ *   with a mesh or compound body once as TB_PAIR_UNSPLIT, which the midphase split
+ *   (pair_split.h) then divides by triangle or by children;
  * - grouped by a "finder" body, which is a or b of each of its pairs: body_pairs[finder]
  *   holds the run's (offset, count) of this half (xy for even steps, zw for odd), for every
  *   body slot (count 0 when it found none), so last step's pair (a, b) is found in the run
@@ -82,8 +82,8 @@ typedef struct tb_broadphase_ops {
     /// (the step records the pair output around them).
     tb_result (*record)(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadphase_search* search);
     void (*destroy)(tb_broadphase_ctx* bp);
-    /// Its search starts from last step's pairs (isap): the compound split keeps a body pair
-    /// none of whose parts touch (compound_split.h), so the pair stays in that list.
+    /// Its search starts from last step's pairs (isap): the midphase split keeps a body pair
+    /// none of whose parts touch (pair_split.h), so the pair stays in that list.
     int reads_last_pairs;
 } tb_broadphase_ops;
 

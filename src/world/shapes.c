@@ -85,7 +85,7 @@ static void count_mesh_shape(tb_world* w, int change)
     if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
 }
 
-/* Likewise the compound split while compound shapes exist. */
+/* Likewise the midphase split while compound shapes exist (or mesh shapes: step.c). */
 static void count_compound_shape(tb_world* w, int change)
 {
     uint32_t before = w->compound_shapes;

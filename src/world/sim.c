@@ -1,7 +1,7 @@
 /* The step's GPU-only buffers: creation, growth, binding. */
 #include "world/sim.h"
 
-#include "broadphase/compound_split.h"
+#include "broadphase/pair_split.h"
 
 #include <string.h>
 
@@ -61,7 +61,7 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
-    case TB_SIM_SPLIT: return tb_compound_split_bytes(sim->prims, capacity);
+    case TB_SIM_SPLIT: return tb_pair_split_bytes(sim->prims, capacity);
     case TB_SIM_BLOCK_ENTRIES:
         return sim->block_lists ? 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8 : 0;
     default: return (VkDeviceSize)capacity * 4;

@@ -76,8 +76,8 @@ static void step_kernel(builder* b, VkPipeline pipeline, const char* name)
 
 /* The world's broadphase (src/broadphase): the bodies' world boxes, the stage
  * broadphase/<name>, what it builds to search in; then broadphase/pairs, its search run by
- * the shared pair output; then, while the world has compound shapes, midphase/compounds,
- * the split of compound pairs by children (compound_split.h). */
+ * the shared pair output; then, while the world has mesh or compound shapes, midphase/split,
+ * the split of their pairs by triangle or by children (pair_split.h). */
 static void broadphase_stage(builder* b)
 {
     tb_world* w = b->w;
@@ -88,11 +88,11 @@ static void broadphase_stage(builder* b)
     end_stage(b, w->broadphase->stage);
     if (!b->r) b->r = tb_broadphase_record_pair_output(&w->bp, &b->list, &search);
     end_stage(b, "broadphase/pairs");
-    if (!w->compound_shapes) return;
-    tb_compound_split_io io = { &w->sim.counters, &w->sim.pair[TB_SIM_SPLIT],
+    if (!w->compound_shapes && !w->mesh_shapes) return;
+    tb_pair_split_io io = { &w->sim.counters, &w->sim.pair[TB_SIM_SPLIT],
                                 w->sim.pair_capacity, w->broadphase->reads_last_pairs };
-    if (!b->r) b->r = tb_compound_split_record(&w->split, &b->list, &io);
-    end_stage(b, "midphase/compounds");
+    if (!b->r) b->r = tb_pair_split_record(&w->split, &b->list, &io);
+    end_stage(b, "midphase/split");
 }
 
 /* Manifolds of every pair (narrowphase/contacts), then the points of the touching hull pairs

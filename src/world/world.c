@@ -114,7 +114,7 @@ void tb_world_free(tb_world* w)
         tb_step_kernels_destroy(w);
         if (w->broadphase) w->broadphase->destroy(&w->bp);
         tb_broadphase_shared_destroy(&w->bp);
-        tb_compound_split_destroy(&w->split);
+        tb_pair_split_destroy(&w->split);
         tb_solver_destroy(&w->solver);
         tb_block_destroy(&w->block);
         tb_sim_destroy(&w->sim);

@@ -19,7 +19,7 @@
 #include "gpu/gpu.h"
 #include "layout.h"
 #include "narrowphase/narrowphase.h"
-#include "broadphase/compound_split.h"
+#include "broadphase/pair_split.h"
 #include "plugin/plugin.h"
 #include "solver/block.h"
 #include "solver/solver.h"
@@ -89,7 +89,7 @@ struct tb_world {
     const tb_broadphase_ops* broadphase;
     tb_broadphase_ctx bp;                  ///< what the broadphase sees
     tb_narrowphase narrowphase;
-    tb_compound_split split;
+    tb_pair_split split;
     tb_solver solver;
     tb_block_solver block;
     int block_solver;            ///< the step solves with the block solver (solver/block.h)
@@ -128,7 +128,7 @@ struct tb_world {
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
     uint32_t mesh_shapes;        ///< live mesh and heightfield shapes: the step records the
                                  ///< mesh passes
-    uint32_t compound_shapes;    ///< live compound shapes: the step records the compound split
+    uint32_t compound_shapes;    ///< live compound shapes: the step records the midphase split
     uint32_t mesh_uploads;       ///< mesh images waiting for the next submission
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced

@@ -1,5 +1,5 @@
-/* The compound split's passes (compound_split.h). */
-#include "broadphase/compound_split.h"
+/* The midphase split's passes (pair_split.h). */
+#include "broadphase/pair_split.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -18,18 +18,18 @@ static VkDeviceSize scratch_at(uint32_t capacity)
     return (end + 255) & ~(VkDeviceSize)255;
 }
 
-VkDeviceSize tb_compound_split_bytes(const tb_prims* prims, uint32_t pair_capacity)
+VkDeviceSize tb_pair_split_bytes(const tb_prims* prims, uint32_t pair_capacity)
 {
     return scratch_at(pair_capacity) + tb_prims_scan_scratch(prims, pair_capacity);
 }
 
-static tb_result make(tb_compound_split* s, const char* name, VkPipeline* out)
+static tb_result make(tb_pair_split* s, const char* name, VkPipeline* out)
 {
     if (*out) return TB_OK;
     return tb_pipeline_create(s->kit.pipelines, name, TB_WORKGROUP_SIZE, out);
 }
 
-static tb_result make_all(tb_compound_split* s)
+static tb_result make_all(tb_pair_split* s)
 {
     tb_result r = make(s, "midphase/split_count", &s->count);
     if (!r) r = make(s, "midphase/split_check", &s->check);
@@ -41,8 +41,8 @@ static tb_result make_all(tb_compound_split* s)
 
 /* A pass of a split kernel: whether apart body pairs are kept, and the split pairs' and
  * counts' addresses, in its push constants. */
-static tb_result add(tb_compound_split* s, tb_pass_list* list, VkPipeline pipeline,
-                     tb_dispatch_rule rule, const tb_compound_split_io* io)
+static tb_result add(tb_pair_split* s, tb_pass_list* list, VkPipeline pipeline,
+                     tb_dispatch_rule rule, const tb_pair_split_io* io)
 {
     tb_pass pass = tb_pass_with_args(pipeline, rule, io->counters->buffer,
                                      TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0);
@@ -56,8 +56,8 @@ static tb_result add(tb_compound_split* s, tb_pass_list* list, VkPipeline pipeli
     return tb_pass_list_add(list, s->kit.diag, &pass);
 }
 
-tb_result tb_compound_split_record(tb_compound_split* s, tb_pass_list* list,
-                                   const tb_compound_split_io* io)
+tb_result tb_pair_split_record(tb_pair_split* s, tb_pass_list* list,
+                                   const tb_pair_split_io* io)
 {
     tb_result r = make_all(s);
     uint32_t capacity = io->pair_capacity;
@@ -75,7 +75,7 @@ tb_result tb_compound_split_record(tb_compound_split* s, tb_pass_list* list,
     return r;
 }
 
-void tb_compound_split_destroy(tb_compound_split* s)
+void tb_pair_split_destroy(tb_pair_split* s)
 {
     VkPipeline all[] = { s->count, s->check, s->write, s->runs, s->copy };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
