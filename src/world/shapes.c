@@ -68,29 +68,15 @@ static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_
     return TB_OK;
 }
 
-/* The step records the narrowphase's hull pass only while hull shapes exist (see step.c):
- * the first hull to come or the last to go rebuilds it. */
-static void count_hull_shape(tb_world* w, int change)
+/* The step records some stages only while shapes of a kind exist (step.c): the
+ * narrowphase's hull pass while hull shapes do, the mesh passes while mesh shapes do, the
+ * midphase split while mesh or compound shapes do. The first of a kind to come or the last
+ * to go rebuilds the step. */
+static void count_shapes(tb_world* w, uint32_t* count, int change)
 {
-    uint32_t before = w->hull_shapes;
-    w->hull_shapes = (uint32_t)((int64_t)before + change);
-    if ((before == 0) != (w->hull_shapes == 0)) w->step_built = 0;
-}
-
-/* Likewise the mesh passes while mesh shapes exist. */
-static void count_mesh_shape(tb_world* w, int change)
-{
-    uint32_t before = w->mesh_shapes;
-    w->mesh_shapes = (uint32_t)((int64_t)before + change);
-    if ((before == 0) != (w->mesh_shapes == 0)) w->step_built = 0;
-}
-
-/* Likewise the midphase split while compound shapes exist (or mesh shapes: step.c). */
-static void count_compound_shape(tb_world* w, int change)
-{
-    uint32_t before = w->compound_shapes;
-    w->compound_shapes = (uint32_t)((int64_t)before + change);
-    if ((before == 0) != (w->compound_shapes == 0)) w->step_built = 0;
+    uint32_t before = *count;
+    *count = (uint32_t)((int64_t)before + change);
+    if ((before == 0) != (*count == 0)) w->step_built = 0;
 }
 
 /* The GPU image of a mesh, heightfield or compound: its bytes, and the image written at dst. */
@@ -146,13 +132,13 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* g
         tb_shape_release_hull(rec);
         return r;
     }
-    if (triangles) count_mesh_shape(w, +1);
-    if (rec->compound) count_compound_shape(w, +1);
+    if (triangles) count_shapes(w, &w->mesh_shapes, +1);
+    if (rec->compound) count_shapes(w, &w->compound_shapes, +1);
     if (imaged) w->mesh_uploads++;
     use_children(w, rec->compound, +1);
     if (!rec->hull) return TB_OK;
     w->narrowphase.hulls.dirty = 1;
-    if (rec->type == TB_SHAPE_HULL) count_hull_shape(w, +1);
+    if (rec->type == TB_SHAPE_HULL) count_shapes(w, &w->hull_shapes, +1);
     return TB_OK;
 }
 
@@ -181,10 +167,10 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     tb_shape_record* s = &w->shapes[slot];
     s->alive = 0;
     if (s->hull) w->narrowphase.hulls.dirty = 1;
-    if (s->type == TB_SHAPE_HULL) count_hull_shape(w, -1);
+    if (s->type == TB_SHAPE_HULL) count_shapes(w, &w->hull_shapes, -1);
     use_children(w, s->compound, -1);
-    if (s->compound) count_compound_shape(w, -1);
-    if (s->mesh || s->heightfield) count_mesh_shape(w, -1);
+    if (s->compound) count_shapes(w, &w->compound_shapes, -1);
+    if (s->mesh || s->heightfield) count_shapes(w, &w->mesh_shapes, -1);
     if (s->mesh || s->heightfield || s->compound) {
         if (s->mesh_pending) w->mesh_uploads--;
         s->mesh_pending = 0;
