@@ -4,6 +4,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "broadphase/broadphase.h"
 #include "layout.h"
 
 /* Where the split buffer's parts start. */
@@ -39,25 +40,23 @@ static tb_result make_all(tb_pair_split* s)
     return r;
 }
 
-/* A pass of a split kernel: whether apart body pairs are kept, and the split pairs' and
- * counts' addresses, in its push constants. */
+/* A pass of a split kernel (tb_broadphase_pass): whether apart body pairs are kept, and
+ * the split pairs' and counts' addresses, in its push constants; indirect passes run over
+ * counters.pair_dispatch. */
 static tb_result add(tb_pair_split* s, tb_pass_list* list, VkPipeline pipeline,
                      tb_dispatch_rule rule, const tb_pair_split_io* io)
 {
-    tb_pass pass = tb_pass_with_args(pipeline, rule, io->counters->buffer,
-                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0);
     tb_gpu_broadphase_push push;
     memset(&push, 0, sizeof push);
     push.args.x = io->keep_apart ? 1u : 0u;
     push.address[0] = tb_gpu_addresses(tb_gpu_ptr_of(io->split, 0).address,
                                        tb_gpu_ptr_of(io->split, counts_at(io->pair_capacity)).address);
-    pass.push_size = sizeof push;
-    memcpy(pass.push, &push, sizeof push);
+    tb_gpu_ptr dispatch = tb_gpu_ptr_of(io->counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET);
+    tb_pass pass = tb_broadphase_pass(pipeline, rule, 1, dispatch, &push);
     return tb_pass_list_add(list, s->kit.diag, &pass);
 }
 
-tb_result tb_pair_split_record(tb_pair_split* s, tb_pass_list* list,
-                                   const tb_pair_split_io* io)
+tb_result tb_pair_split_record(tb_pair_split* s, tb_pass_list* list, const tb_pair_split_io* io)
 {
     tb_result r = make_all(s);
     uint32_t capacity = io->pair_capacity;
@@ -80,5 +79,5 @@ void tb_pair_split_destroy(tb_pair_split* s)
     VkPipeline all[] = { s->count, s->check, s->write, s->runs, s->copy };
     for (size_t i = 0; i < sizeof all / sizeof all[0]; i++)
         tb_pipeline_destroy(s->kit.pipelines, all[i]);
-    memset(&s->count, 0, 5 * sizeof(VkPipeline));
+    *s = (tb_pair_split){ .kit = s->kit };
 }

@@ -46,8 +46,7 @@ typedef struct tb_pair_split_io {
 } tb_pair_split_io;
 
 /// Append the stage's passes.
-tb_result tb_pair_split_record(tb_pair_split* s, tb_pass_list* list,
-                                   const tb_pair_split_io* io);
+tb_result tb_pair_split_record(tb_pair_split* s, tb_pass_list* list, const tb_pair_split_io* io);
 
 void tb_pair_split_destroy(tb_pair_split* s);
 

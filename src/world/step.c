@@ -89,8 +89,8 @@ static void broadphase_stage(builder* b)
     if (!b->r) b->r = tb_broadphase_record_pair_output(&w->bp, &b->list, &search);
     end_stage(b, "broadphase/pairs");
     if (!w->compound_shapes && !w->mesh_shapes) return;
-    tb_pair_split_io io = { &w->sim.counters, &w->sim.pair[TB_SIM_SPLIT],
-                                w->sim.pair_capacity, w->broadphase->reads_last_pairs };
+    tb_pair_split_io io = { &w->sim.counters, &w->sim.pair[TB_SIM_SPLIT], w->sim.pair_capacity,
+                            w->broadphase->reads_last_pairs };
     if (!b->r) b->r = tb_pair_split_record(&w->split, &b->list, &io);
     end_stage(b, "midphase/split");
 }
