@@ -301,6 +301,9 @@ typedef enum tb_shape_type {
     TB_SHAPE_MESH = 4,
     TB_SHAPE_HEIGHTFIELD = 5,
     TB_SHAPE_COMPOUND = 6,
+    TB_SHAPE_CAPSULE = 7,
+    TB_SHAPE_CYLINDER = 8,
+    TB_SHAPE_CONE = 9,
     TB_SHAPE_TYPE_FORCE_32 = 0x7fffffff
 } tb_shape_type;
 
@@ -331,6 +334,21 @@ TB_API tb_result tb_shape_create_box(tb_world* world, const tb_shape_def* def,
 /// may use them.
 TB_API tb_result tb_shape_create_plane(tb_world* world, const tb_shape_def* def, tb_vec3 normal,
                                        float offset, tb_shape_id* out);
+/// Capsule: the points within `radius` of the segment from (0, -half_height, 0) to
+/// (0, half_height, 0) of the body frame (a cylinder of length 2 half_height capped by two
+/// half spheres). radius > 0, half_height >= 0 (0 is a sphere), both finite and at most 1e6.
+TB_API tb_result tb_shape_create_capsule(tb_world* world, const tb_shape_def* def, float radius,
+                                         float half_height, tb_shape_id* out);
+/// Cylinder of the given radius whose axis is the body's y axis, from y = -half_height to
+/// y = half_height. radius > 0 and half_height > 0, finite and at most 1e6.
+TB_API tb_result tb_shape_create_cylinder(tb_world* world, const tb_shape_def* def, float radius,
+                                          float half_height, tb_shape_id* out);
+/// Cone of the given base radius and height 2 half_height along the body's y axis. Like a
+/// hull, a cone body turns about its centre of mass, which is its body origin: the base
+/// circle lies at y = -half_height / 2 and the apex at y = 3 half_height / 2. radius > 0
+/// and half_height > 0, finite and at most 1e6.
+TB_API tb_result tb_shape_create_cone(tb_world* world, const tb_shape_def* def, float radius,
+                                      float half_height, tb_shape_id* out);
 /// Convex hull of `count` points (xyz in m, in the frame the caller gives them). Duplicate
 /// and (nearly) coplanar points are fine; coplanar faces merge into polygons. Fails with
 /// TB_ERROR_INVALID_ARGUMENT on non-finite points or when the points span no volume (fewer
@@ -382,7 +400,8 @@ typedef struct tb_compound_child {
     tb_quat rotation;   ///< the child's frame: a unit quaternion (length 1 within 1e-3)
 } tb_compound_child;
 
-/// Compound: a rigid union of 1 to 64 convex children (spheres, boxes, hulls). Each child
+/// Compound: a rigid union of 1 to 64 convex children (spheres, boxes, hulls, capsules,
+/// cylinders, cones). Each child
 /// keeps its own density, friction and restitution; the compound's mass, centre of mass and
 /// inertia are composed from them (parallel axis theorem). Like a hull body, a compound body
 /// turns about its centre of mass: its body frame is the composed principal frame, and
@@ -390,7 +409,8 @@ typedef struct tb_compound_child {
 /// other bodies are found and solved per child (and per triangle against meshes), each
 /// child pair with its own manifold and warm start. The children stay in use while the
 /// compound lives (tb_shape_destroy refuses them). Fails with TB_ERROR_INVALID_ARGUMENT on
-/// NULL children, no or more than 64 children, a child that is not a sphere, box or hull, a
+/// NULL children, no or more than 64 children, a child that is not convex (a sphere, box,
+/// hull, capsule, cylinder or cone), a
 /// position that is not finite or farther than 1e6 m, or a rotation that is not a unit
 /// quaternion; with
 /// TB_ERROR_INVALID_ID or TB_ERROR_STALE_ID on a child id that names no live shape.
@@ -437,6 +457,10 @@ TB_API tb_result tb_shape_get_mesh_geometry(const tb_world* world, tb_shape_id s
 TB_API tb_result tb_shape_get_sphere_radius(const tb_world* world, tb_shape_id shape, float* out);
 TB_API tb_result tb_shape_get_box_half_extents(const tb_world* world, tb_shape_id shape,
                                                tb_vec3* out);
+
+/// A capsule's, cylinder's or cone's radius and half height, as created.
+TB_API tb_result tb_shape_get_round_size(const tb_world* world, tb_shape_id shape, float* radius,
+                                         float* half_height);
 
 /// What a hull became.
 typedef struct tb_hull_info {

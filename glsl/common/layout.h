@@ -142,6 +142,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_GPU_SHAPE_MESH       TB_U(4)
 #define TB_GPU_SHAPE_HEIGHTFIELD TB_U(5)
 #define TB_GPU_SHAPE_COMPOUND   TB_U(6)
+#define TB_GPU_SHAPE_CAPSULE    TB_U(7)
+#define TB_GPU_SHAPE_CYLINDER   TB_U(8)
+#define TB_GPU_SHAPE_CONE       TB_U(9)
 
 /* Convex hull limits: the GPU walks vertices, faces and edges per pair and clips an incident
  * face polygon in registers, so their sizes are bounded. tb_shape_create_hull rejects hulls
@@ -609,7 +612,9 @@ TB_STRUCT(tb_gpu_compound_child) {
 TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */
     TB_VEC4 aabb_half;      /* xyz half extents of the local AABB */
-    TB_VEC4 params;         /* sphere: x radius; box: xyz half extents; plane: xyz normal, w offset */
+    TB_VEC4 params;         /* sphere: x radius; box: xyz half extents; plane: xyz normal, w offset;
+                               capsule, cylinder, cone: x radius, y half height (along the
+                               body's y axis; a cone's base at y = -y/2, apex at 3y/2) */
     TB_UVEC4 info;          /* x TB_GPU_SHAPE_*; hulls (boxes too): y vertex count, z face
                                count, w edge count; compounds: y child count */
     TB_VEC4 material;       /* x friction coefficient, y restitution, z w reserved */

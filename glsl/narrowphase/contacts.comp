@@ -31,9 +31,10 @@
 #include "hull_sphere.glsl"
 #include "pair.glsl"
 
-// Shape types in canonical order: sphere < box < plane < hull < mesh, so each routine knows
-// which shape comes first. Mesh pairs never come here (mesh_points.comp). Plane against plane never arrives (planes are static); it gets no
-// points. A box meets a hull through its hull data; box against box keeps its own path.
+// Shape types in canonical order: sphere < box < plane < hull < mesh < capsule, cylinder,
+// cone, so each routine knows which shape comes first. Mesh pairs never come here
+// (mesh_points.comp), nor do pairs with a capsule, cylinder or cone (round_points.comp).
+// Plane against plane never arrives (planes are static); it gets no points. A box meets a hull through its hull data; box against box keeps its own path.
 uint np_collide(np_target t, np_body first, np_body second, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
@@ -76,6 +77,8 @@ uint pair_contacts(uint p)
     // block solver's stiffness of the pair (w) carries over.
     uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
     manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    // A capsule, cylinder or cone comes last in the canonical order: round_points.comp's.
+    if (np_is_round(q.second.type)) return 0u;
     uint count = np_collide(q.t, q.first, q.second, q.margin, normal);
     np_pair_finish(q, count, normal);
     return count;

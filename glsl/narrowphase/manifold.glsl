@@ -51,6 +51,13 @@ np_body np_load_part(uint i, uint c)
     return b;
 }
 
+// Capsules, cylinders and cones: their pairs are narrowphase/round_points' (round.glsl).
+bool np_is_round(uint type)
+{
+    return type == TB_GPU_SHAPE_CAPSULE || type == TB_GPU_SHAPE_CYLINDER ||
+           type == TB_GPU_SHAPE_CONE;
+}
+
 // Column i of m and component i of v for a run-time i, without a private array.
 vec3 np_col(mat3 m, uint i)
 {

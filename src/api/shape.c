@@ -4,12 +4,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "api/api.h"
 #include "base/checks.h"
 #include "world/world.h"
 
 #define PI 3.14159265358979323846
 
-static tb_result check_material(tb_world* w, const tb_shape_def* def, tb_shape_id* out)
+tb_result tb_api_check_shape_def(tb_world* w, const tb_shape_def* def, tb_shape_id* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
     if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "out is NULL");
@@ -40,7 +41,7 @@ static float* copy_points(const tb_vec3* points, uint32_t count)
     return xyz;
 }
 
-static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
+tb_gpu_shape tb_api_gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
 {
     tb_gpu_shape s;
     memset(&s, 0, sizeof s);
@@ -53,7 +54,7 @@ static tb_gpu_shape gpu_shape(uint32_t type, tb_vec3 half, tb_gpu_vec4 params)
 /* A shape whose local box [lo, hi] (body frame) need not be centred on the origin. */
 static tb_gpu_shape boxed_shape(uint32_t type, const float lo[3], const float hi[3])
 {
-    tb_gpu_shape s = gpu_shape(type, (tb_vec3){ (hi[0] - lo[0]) / 2, (hi[1] - lo[1]) / 2,
+    tb_gpu_shape s = tb_api_gpu_shape(type, (tb_vec3){ (hi[0] - lo[0]) / 2, (hi[1] - lo[1]) / 2,
                                                 (hi[2] - lo[2]) / 2 }, (tb_gpu_vec4){ 0 });
     s.aabb_center = (tb_gpu_vec4){ (hi[0] + lo[0]) / 2, (hi[1] + lo[1]) / 2,
                                    (hi[2] + lo[2]) / 2, 0 };
@@ -63,7 +64,7 @@ static tb_gpu_shape boxed_shape(uint32_t type, const float lo[3], const float hi
 tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float radius,
                                  tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     if (!isfinite(radius) || radius <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "sphere radius must be finite and > 0, "
@@ -72,7 +73,7 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
     tb_shape_record rec = { .type = TB_SHAPE_SPHERE, .material = *def,
                             .volume = (float)(4.0 / 3.0 * PI * r2 * radius) };
     rec.unit_inertia = (tb_vec3){ (float)(0.4 * r2), (float)(0.4 * r2), (float)(0.4 * r2) };
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_SPHERE, (tb_vec3){ radius, radius, radius },
+    tb_gpu_shape gpu = tb_api_gpu_shape(TB_GPU_SHAPE_SPHERE, (tb_vec3){ radius, radius, radius },
                                  (tb_gpu_vec4){ radius, 0, 0, 0 });
     return tb_shapes_add(w, &rec, &gpu, out);
 }
@@ -92,7 +93,7 @@ static tb_result add_hull_shape(tb_world* w, tb_shape_record* rec, tb_gpu_shape*
 
 tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     if (!tb_finite3(h) || h.x <= 0 || h.y <= 0 || h.z <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box half extents must be finite and "
@@ -102,7 +103,7 @@ tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, t
                             .volume = (float)(8.0 * h.x * h.y * h.z) };
     rec.unit_inertia = (tb_vec3){ (float)((y2 + z2) / 3), (float)((x2 + z2) / 3),
                                   (float)((x2 + y2) / 3) };
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_BOX, h, (tb_gpu_vec4){ h.x, h.y, h.z, 0 });
+    tb_gpu_shape gpu = tb_api_gpu_shape(TB_GPU_SHAPE_BOX, h, (tb_gpu_vec4){ h.x, h.y, h.z, 0 });
     tb_hull hull;
     char error[256];
     if (tb_hull_box((const float[3]){ h.x, h.y, h.z }, &hull, error, sizeof error))
@@ -113,7 +114,7 @@ tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, t
 tb_result tb_shape_create_hull(tb_world* w, const tb_shape_def* def, const tb_vec3* points,
                                uint32_t count, tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     if (!points) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "hull points are NULL");
     float* xyz = copy_points(points, count);
@@ -134,7 +135,7 @@ tb_result tb_shape_create_mesh(tb_world* w, const tb_shape_def* def, const tb_ve
                                uint32_t vertex_count, const uint32_t* indices,
                                uint32_t triangle_count, tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     if (!vertices || !indices)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "mesh vertices or indices are NULL");
@@ -161,7 +162,7 @@ tb_result tb_shape_create_heightfield(tb_world* w, const tb_shape_def* def, cons
                                       uint32_t count_x, uint32_t count_z, float cell_x,
                                       float cell_z, const uint8_t* holes, tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     tb_heightfield* field = malloc(sizeof *field);
     if (!field) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
@@ -179,7 +180,7 @@ tb_result tb_shape_create_heightfield(tb_world* w, const tb_shape_def* def, cons
 tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n, float offset,
                                 tb_shape_id* out)
 {
-    tb_result r = check_material(w, def, out);
+    tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     double len = sqrt((double)n.x * n.x + (double)n.y * n.y + (double)n.z * n.z);
     if (!tb_finite3(n) || !isfinite(offset) || !(len > 1e-12) || !isfinite(len))
@@ -187,7 +188,7 @@ tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n,
                        "and a finite offset");
     tb_shape_record rec = { .type = TB_SHAPE_PLANE, .material = *def };
     const float big = (float)TB_UNBOUNDED_EXTENT;
-    tb_gpu_shape gpu = gpu_shape(TB_GPU_SHAPE_PLANE, (tb_vec3){ big, big, big },
+    tb_gpu_shape gpu = tb_api_gpu_shape(TB_GPU_SHAPE_PLANE, (tb_vec3){ big, big, big },
                                  (tb_gpu_vec4){ (float)(n.x / len), (float)(n.y / len),
                                                 (float)(n.z / len), offset });
     return tb_shapes_add(w, &rec, &gpu, out);

@@ -212,6 +212,7 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
+    tb_pipeline_destroy(np->kit.pipelines, np->round_points);
     tb_pipeline_destroy(np->kit.pipelines, np->keep);
     hull_table_destroy(np);
     memset(np, 0, sizeof *np);
@@ -249,6 +250,16 @@ tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* li
     if (!r) r = per_pair(np, list, np->mesh_points, counters);
     if (!r) r = per_pair(np, list, np->mesh_reduce, counters);
     return r;
+}
+
+tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
+                                             VkBuffer counters)
+{
+    tb_result r = TB_OK;
+    if (!np->round_points)
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points", TB_WORKGROUP_SIZE,
+                               &np->round_points);
+    return r ? r : per_pair(np, list, np->round_points, counters);
 }
 
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,

@@ -9,6 +9,9 @@
  *                            only their separating axis
  *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
  *                            while the world has hull shapes
+ *   narrowphase/round_points the points of every pair with a capsule, cylinder or cone
+ *                            (against any convex shape, a plane or a mesh triangle),
+ *                            recorded only while the world has such shapes
  *   narrowphase/mesh_points  the points of each pair of a body and a mesh triangle (the
  *                            broadphase split the body pair by triangle), then
  *   narrowphase/mesh_reduce  at most four of them per body pair; both recorded only while
@@ -45,6 +48,7 @@ typedef struct tb_narrowphase {
     tb_gpu_kit kit;
     VkPipeline contacts, hull_points, keep;
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
+    VkPipeline round_points;               ///< made when the world's first round shape comes
     tb_hull_table hulls;
 } tb_narrowphase;
 
@@ -72,6 +76,10 @@ tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_li
 /// while the world has mesh shapes; their pipelines are made the first time).
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
+/// narrowphase/round_points, the points of the pairs with a capsule, cylinder or cone
+/// (recorded only while the world has such shapes; its pipeline is made the first time).
+tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
+                                             VkBuffer counters);
 /// narrowphase/keep.
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
                                      VkBuffer counters);

@@ -72,6 +72,11 @@ static tb_result add_shape(tb_world* w, const tb_shape_record* record, const tb_
  * narrowphase's hull pass while hull shapes do, the mesh passes while mesh shapes do, the
  * midphase split while mesh or compound shapes do. The first of a kind to come or the last
  * to go rebuilds the step. */
+int tb_shape_type_is_round(tb_shape_type type)
+{
+    return type == TB_SHAPE_CAPSULE || type == TB_SHAPE_CYLINDER || type == TB_SHAPE_CONE;
+}
+
 static void count_shapes(tb_world* w, uint32_t* count, int change)
 {
     uint32_t before = *count;
@@ -133,6 +138,7 @@ tb_result tb_shapes_add(tb_world* w, tb_shape_record* rec, const tb_gpu_shape* g
         return r;
     }
     if (triangles) count_shapes(w, &w->mesh_shapes, +1);
+    if (tb_shape_type_is_round(rec->type)) count_shapes(w, &w->round_shapes, +1);
     if (rec->compound) count_shapes(w, &w->compound_shapes, +1);
     if (imaged) w->mesh_uploads++;
     use_children(w, rec->compound, +1);
@@ -168,6 +174,7 @@ void tb_shapes_remove(tb_world* w, uint32_t slot)
     s->alive = 0;
     if (s->hull) w->narrowphase.hulls.dirty = 1;
     if (s->type == TB_SHAPE_HULL) count_shapes(w, &w->hull_shapes, -1);
+    if (tb_shape_type_is_round(s->type)) count_shapes(w, &w->round_shapes, -1);
     use_children(w, s->compound, -1);
     if (s->compound) count_shapes(w, &w->compound_shapes, -1);
     if (s->mesh || s->heightfield) count_shapes(w, &w->mesh_shapes, -1);

@@ -129,6 +129,8 @@ struct tb_world {
     uint32_t mesh_shapes;        ///< live mesh and heightfield shapes: the step records the
                                  ///< mesh passes
     uint32_t compound_shapes;    ///< live compound shapes: the step records the midphase split
+    uint32_t round_shapes;       ///< live capsules, cylinders and cones: the step records
+                                 ///< narrowphase/round_points
     uint32_t mesh_uploads;       ///< mesh images waiting for the next submission
 
     uint64_t buffer_generation;  ///< bumped whenever a GPU buffer is replaced
@@ -204,6 +206,8 @@ uint32_t tb_bodies_ids(const tb_world* w, tb_body_id* out, uint32_t capacity);
 /* shapes.c */
 /// The record of a valid id, or an error and NULL.
 tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
+/// Capsules, cylinders and cones: convex shapes whose pairs narrowphase/round_points solves.
+int tb_shape_type_is_round(tb_shape_type type);
 /// Add a checked shape: its record (a hull it holds becomes the world's) and its GPU entry.
 tb_result tb_shapes_add(tb_world* w, tb_shape_record* record, const tb_gpu_shape* gpu,
                         tb_shape_id* out);

@@ -1,0 +1,241 @@
+// GJK distance between the cores of two convex shapes (convex.glsl), with the signed-volume
+// sub-algorithm of Montanari, Petrinic and Barbieri ("Improving the GJK algorithm for faster
+// and more reliable distance queries between convex objects", ACM TOG 2017) in place of
+// Johnson's: the simplex's closest point to the origin is found from signed volumes of the
+// simplex and its faces projected where they are largest, so no Cramer's determinants of
+// nearly dependent dot products are formed, and the search for the closest sub-simplex
+// only visits the faces the origin lies beyond.
+//
+// The search runs on the Minkowski difference A - B: each simplex vertex w = a - b keeps
+// its two support points a and b, and the closest points of the shapes are the same
+// barycentric sums of them. It ends when a new support point gets no closer than the
+// current one (the distance is found), when the simplex holds the origin or the distance is
+// within float noise of zero (the cores overlap: EPA's business), or after
+// NP_GJK_ITERATIONS with the best point found so far (status NP_GJK_LIMIT).
+#ifndef TB_NP_GJK_GLSL
+#define TB_NP_GJK_GLSL
+
+#define NP_GJK_ITERATIONS 32u
+#define NP_GJK_SEPARATED 0u
+#define NP_GJK_OVERLAP 1u
+#define NP_GJK_LIMIT 2u
+
+struct np_simplex {
+    vec3 w[4];      // Minkowski points a - b
+    vec3 a[4];      // A's support points
+    vec3 b[4];      // B's support points
+    vec4 lambda;    // barycentric weights of the closest point
+    uint n;
+};
+
+bool np_same_sign(float x, float y)
+{
+    return (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
+}
+
+// The simplex of s's vertices i, j, k (the first n of them).
+np_simplex np_simplex_pick(np_simplex s, uint i, uint j, uint k, uint n)
+{
+    np_simplex t = s;
+    uvec3 idx = uvec3(i, j, k);
+    for (uint m = 0u; m < n; m++) {
+        t.w[m] = s.w[idx[m]];
+        t.a[m] = s.a[idx[m]];
+        t.b[m] = s.b[idx[m]];
+    }
+    t.n = n;
+    return t;
+}
+
+vec3 np_simplex_point(np_simplex s)
+{
+    vec3 v = vec3(0.0);
+    for (uint m = 0u; m < s.n; m++) v += s.lambda[m] * s.w[m];
+    return v;
+}
+
+// Segment w0 w1: the origin's projection on the line, measured along the axis where the
+// segment is longest.
+np_simplex np_sv_segment(np_simplex s)
+{
+    vec3 t = s.w[1] - s.w[0];
+    float tt = dot(t, t);
+    if (tt == 0.0) {
+        s.n = 1u;
+        s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
+        return s;
+    }
+    vec3 p = s.w[0] - t * (dot(s.w[0], t) / tt);
+    vec3 at = abs(t);
+    uint k = at.x >= at.y && at.x >= at.z ? 0u : (at.y >= at.z ? 1u : 2u);
+    float mu = s.w[0][k] - s.w[1][k];
+    float c0 = p[k] - s.w[1][k];    // w0's weight times mu
+    float c1 = s.w[0][k] - p[k];    // w1's
+    if (np_same_sign(mu, c0) && np_same_sign(mu, c1)) {
+        s.lambda = vec4(c0 / mu, c1 / mu, 0.0, 0.0);
+        return s;
+    }
+    // Beyond an end: that end alone.
+    if (!np_same_sign(mu, c0)) s = np_simplex_pick(s, 1u, 0u, 0u, 1u);
+    else s.n = 1u;
+    s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
+    return s;
+}
+
+// Twice the signed area of the triangle (p, q, r) in the coordinate plane (x, y).
+float np_area2(vec2 p, vec2 q, vec2 r)
+{
+    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+}
+
+// Triangle w0 w1 w2: the origin's projection on its plane, weighed by the areas of the
+// triangles it makes with each edge in the coordinate plane where the triangle is largest.
+// A weight of the wrong sign puts the projection beyond the opposite edge; the closest of
+// those edges' answers wins.
+np_simplex np_sv_triangle(np_simplex s)
+{
+    vec3 n = cross(s.w[1] - s.w[0], s.w[2] - s.w[0]);
+    float nn = dot(n, n);
+    vec3 p = nn > 0.0 ? n * (dot(s.w[0], n) / nn) : vec3(0.0);
+    vec3 an = abs(n);
+    // Keep the two axes after the largest one in cyclic order, so the projected area has
+    // the sign of that component of n.
+    uint k = an.x >= an.y && an.x >= an.z ? 0u : (an.y >= an.z ? 1u : 2u);
+    uint i = (k + 1u) % 3u, j = (k + 2u) % 3u;
+    vec2 q0 = vec2(s.w[0][i], s.w[0][j]), q1 = vec2(s.w[1][i], s.w[1][j]);
+    vec2 q2 = vec2(s.w[2][i], s.w[2][j]), pp = vec2(p[i], p[j]);
+    float mu = np_area2(q0, q1, q2);
+    vec3 c = vec3(np_area2(pp, q1, q2), np_area2(q0, pp, q2), np_area2(q0, q1, pp));
+    if (np_same_sign(mu, c.x) && np_same_sign(mu, c.y) && np_same_sign(mu, c.z)) {
+        s.lambda = vec4(c / mu, 0.0);
+        return s;
+    }
+    np_simplex best = s;
+    float best_d = 3.0e38;
+    for (uint m = 0u; m < 3u; m++) {
+        if (np_same_sign(mu, c[m])) continue;
+        np_simplex e = np_sv_segment(np_simplex_pick(s, (m + 1u) % 3u, (m + 2u) % 3u, 0u, 2u));
+        vec3 v = np_simplex_point(e);
+        if (dot(v, v) < best_d) {
+            best_d = dot(v, v);
+            best = e;
+        }
+    }
+    return best;
+}
+
+// Signed volume of the tetrahedron (p, q, r, o), six times over.
+float np_volume6(vec3 p, vec3 q, vec3 r, vec3 o)
+{
+    return dot(q - p, cross(r - p, o - p));
+}
+
+// Tetrahedron w0..w3: the origin inside it (every weight of the sign of the whole volume)
+// ends the search; else the closest of the faces it lies beyond.
+np_simplex np_sv_tetrahedron(np_simplex s)
+{
+    vec3 o = vec3(0.0);
+    vec4 c = vec4(np_volume6(o, s.w[1], s.w[2], s.w[3]), np_volume6(s.w[0], o, s.w[2], s.w[3]),
+                  np_volume6(s.w[0], s.w[1], o, s.w[3]), np_volume6(s.w[0], s.w[1], s.w[2], o));
+    float mu = c.x + c.y + c.z + c.w;
+    bool inside = true;
+    for (uint m = 0u; m < 4u; m++) inside = inside && np_same_sign(mu, c[m]);
+    if (inside) {
+        s.lambda = c / mu;
+        return s;
+    }
+    np_simplex best = s;
+    float best_d = 3.0e38;
+    for (uint m = 0u; m < 4u; m++) {
+        if (np_same_sign(mu, c[m])) continue;
+        uvec3 f = m == 0u ? uvec3(1u, 2u, 3u)
+                : (m == 1u ? uvec3(0u, 2u, 3u) : (m == 2u ? uvec3(0u, 1u, 3u) : uvec3(0u, 1u, 2u)));
+        np_simplex e = np_sv_triangle(np_simplex_pick(s, f.x, f.y, f.z, 3u));
+        vec3 v = np_simplex_point(e);
+        if (dot(v, v) < best_d) {
+            best_d = dot(v, v);
+            best = e;
+        }
+    }
+    return best;
+}
+
+np_simplex np_sv_reduce(np_simplex s)
+{
+    if (s.n == 4u) return np_sv_tetrahedron(s);
+    if (s.n == 3u) return np_sv_triangle(s);
+    if (s.n == 2u) return np_sv_segment(s);
+    s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
+    return s;
+}
+
+struct np_gjk_result {
+    uint status;        // NP_GJK_*
+    float distance;     // between the cores (0 when they overlap)
+    vec3 pa, pb;        // closest points of the cores, world space
+    np_simplex simplex; // the last simplex (EPA starts from it)
+    uint iterations;
+};
+
+np_gjk_result np_gjk(np_convex A, np_convex B)
+{
+    np_gjk_result r;
+    np_simplex s;
+    s.n = 0u;
+    s.lambda = vec4(0.0);
+    vec3 v = np_core_centre(A) - np_core_centre(B);
+    if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
+    r.status = NP_GJK_LIMIT;
+    float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
+    uint it;
+    for (it = 0u; it < NP_GJK_ITERATIONS; it++) {
+        vec3 a = np_core_support(A, -v);
+        vec3 b = np_core_support(B, v);
+        vec3 w = a - b;
+        scale = max(scale, dot(w, w));
+        float vv = dot(v, v);
+        // No closer than v along v: v is the distance (relative tolerance of float).
+        if (s.n > 0u && vv - dot(v, w) <= 1.0e-5 * vv) {
+            r.status = NP_GJK_SEPARATED;
+            break;
+        }
+        bool repeated = false;
+        for (uint m = 0u; m < s.n; m++) repeated = repeated || s.w[m] == w;
+        if (repeated) {
+            r.status = NP_GJK_SEPARATED;
+            break;
+        }
+        np_simplex before = s;
+        s.w[s.n] = w;
+        s.a[s.n] = a;
+        s.b[s.n] = b;
+        s.n++;
+        s = np_sv_reduce(s);
+        vec3 next = np_simplex_point(s);
+        if (s.n == 4u || dot(next, next) <= 1.0e-10 * scale) {
+            r.status = NP_GJK_OVERLAP;
+            v = next;
+            it++;
+            break;
+        }
+        // The distance never grows; a step that does not shrink it is float noise.
+        if (dot(next, next) >= vv && before.n > 0u) {
+            s = before;
+            r.status = NP_GJK_SEPARATED;
+            break;
+        }
+        v = next;
+    }
+    r.iterations = it;
+    r.simplex = s;
+    r.pa = vec3(0.0);
+    r.pb = vec3(0.0);
+    for (uint m = 0u; m < s.n; m++) {
+        r.pa += s.lambda[m] * s.a[m];
+        r.pb += s.lambda[m] * s.b[m];
+    }
+    r.distance = r.status == NP_GJK_OVERLAP ? 0.0 : length(r.pa - r.pb);
+    return r;
+}
+
+#endif

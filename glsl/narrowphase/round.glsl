@@ -1,0 +1,444 @@
+// Contact manifolds of the pairs with a capsule, cylinder or cone (narrowphase/round_points):
+// the normal from GJK (cores apart) or EPA (cores overlapping), then the points from the
+// two shapes' supporting features along it, as persistent-manifold engines build them:
+//
+// - Each shape offers the feature it presents along the normal (np_feature_of): a face
+//   polygon (a box or hull face, a cylinder's cap or a cone's base as an octagon whose first
+//   corner is the rim's farthest point, a triangle), a line (a capsule's or cylinder's side,
+//   a cone's slant line) when the normal is within 10 degrees of square to it, or a point.
+// - Where one feature is a face within 25 degrees of the normal, the other's polygon, line
+//   or point is clipped by the face's side planes (Sutherland-Hodgman) and its corners below the
+//   face plane plus the margin are the points, measured along the face normal, which
+//   becomes the manifold's; more than four are reduced (hull.glsl).
+// - Two parallel lines overlap on a segment: its two ends.
+// - Anything else (or nothing left after clipping) is one point: the closest points.
+//
+// A cylinder standing on its cap gets four points, lying on its side two (a line contact),
+// tilted on its rim one; so does a cone on its base, its slant side, its rim.
+//
+// Feature keys: bit 31 one closest point; else bit 30 set when the reference face is the
+// second shape's, bits 22-29 the reference feature, 14-21 the incident feature, 0-13 the
+// corner's label (an incident corner k: k; a crossing made by reference side s of the
+// polygon edge from a corner labelled L: (s + 1) << 6 | L & 63).
+#ifndef TB_NP_ROUND_GLSL
+#define TB_NP_ROUND_GLSL
+
+#define NP_FEATURE_MAX 32u      // a hull face's most corners (TB_HULL_MAX_FACE_VERTICES)
+#define NP_DISC_CORNERS 8u      // a cap or base circle as a polygon
+#define NP_CLIP_ROOM 48u        // a clipped polygon's corners: 32 + 8 sides, and some
+#define NP_LINE_SINE 0.17       // sin 10 degrees: a side within it of square to the normal
+#define NP_FACE_COSINE 0.9      // cos 25 degrees: a face within it of the normal
+
+struct np_feature {
+    vec3 v[NP_FEATURE_MAX];
+    uint count;     // 1 a point, 2 a line, 3 or more a face polygon
+    vec3 normal;    // a face's outward unit normal
+    uint id;        // which feature of the shape (feature keys)
+};
+
+np_feature np_feature_points(vec3 p, vec3 q, uint count, uint id)
+{
+    np_feature f;
+    f.v[0] = p;
+    f.v[1] = q;
+    f.count = count;
+    f.normal = vec3(0.0);
+    f.id = id;
+    return f;
+}
+
+// A circle of radius r about centre c, facing `normal`, as an octagon whose first corner
+// lies in direction `start` (unit, square to normal).
+np_feature np_feature_disc(vec3 c, vec3 normal, vec3 start, float r, uint id)
+{
+    np_feature f;
+    vec3 e2 = cross(normal, start);
+    for (uint k = 0u; k < NP_DISC_CORNERS; k++) {
+        float angle = 6.28318530718 * float(k) / float(NP_DISC_CORNERS);
+        f.v[k] = c + r * (cos(angle) * start + sin(angle) * e2);
+    }
+    f.count = NP_DISC_CORNERS;
+    f.normal = normal;
+    f.id = id;
+    return f;
+}
+
+// d's part square to the unit axis u, normalised; `fallback` (square to u) where d runs
+// (nearly) along u.
+vec3 np_radial(vec3 d, vec3 u, vec3 fallback)
+{
+    vec3 p = d - u * dot(d, u);
+    float len = length(p);
+    return len > 0.05 ? p / len : fallback;
+}
+
+np_feature np_capsule_feature(np_convex c, vec3 d)
+{
+    vec3 u = c.body.rot[1];
+    float cu = dot(u, d), h = c.body.params.y;
+    vec3 skin = c.radius * d;
+    if (abs(cu) < NP_LINE_SINE && h > 0.0)
+        return np_feature_points(c.body.pos - u * h + skin, c.body.pos + u * h + skin, 2u, 1u);
+    float side = cu >= 0.0 ? 1.0 : -1.0;
+    return np_feature_points(c.body.pos + side * h * u + skin, vec3(0.0), 1u, cu >= 0.0 ? 2u : 3u);
+}
+
+np_feature np_cylinder_feature(np_convex c, vec3 d)
+{
+    vec3 u = c.body.rot[1];
+    float cu = dot(u, d), r = c.body.params.x, h = c.body.params.y;
+    vec3 radial = np_radial(d, u, c.body.rot[0]);
+    if (abs(cu) < NP_LINE_SINE) {
+        vec3 rim = c.body.pos + radial * r;
+        return np_feature_points(rim - u * h, rim + u * h, 2u, 1u);
+    }
+    vec3 normal = cu >= 0.0 ? u : -u;
+    return np_feature_disc(c.body.pos + normal * h, normal, radial, r, cu >= 0.0 ? 2u : 3u);
+}
+
+np_feature np_cone_feature(np_convex c, vec3 d)
+{
+    vec3 u = c.body.rot[1];
+    float r = c.body.params.x, h = c.body.params.y;
+    vec3 radial = np_radial(d, u, c.body.rot[0]);
+    vec3 apex = c.body.pos + 1.5 * h * u, base = c.body.pos - 0.5 * h * u;
+    vec3 rim = base + radial * r;
+    vec3 slant = normalize(2.0 * h * radial + r * u);   // the side's outward normal there
+    if (dot(d, slant) > 0.985) return np_feature_points(apex, rim, 2u, 1u);
+    if (dot(d, apex) >= dot(d, rim)) return np_feature_points(apex, vec3(0.0), 1u, 4u);
+    return np_feature_disc(base, -u, radial, r, 2u);
+}
+
+np_feature np_box_feature(np_convex c, vec3 d)
+{
+    vec3 l = transpose(c.body.rot) * d, al = abs(l), h = c.body.params.xyz;
+    uint k = al.x >= al.y && al.x >= al.z ? 0u : (al.y >= al.z ? 1u : 2u);
+    uint i = (k + 1u) % 3u, j = (k + 2u) % 3u;
+    float side = l[k] >= 0.0 ? 1.0 : -1.0;
+    np_feature f;
+    const vec2 corners[4] = vec2[4](vec2(1, 1), vec2(-1, 1), vec2(-1, -1), vec2(1, -1));
+    for (uint m = 0u; m < 4u; m++) {
+        vec3 x;
+        x[k] = side * h[k];
+        x[i] = corners[m].x * h[i];
+        x[j] = corners[m].y * h[j];
+        f.v[m] = c.body.pos + c.body.rot * x;
+    }
+    vec3 n = vec3(0.0);
+    n[k] = side;
+    f.count = 4u;
+    f.normal = c.body.rot * n;
+    f.id = 2u * k + (side > 0.0 ? 1u : 0u);
+    return f;
+}
+
+np_feature np_hull_feature(np_convex c, vec3 d)
+{
+    np_hull h = np_hull_of(c.body);
+    vec3 l = transpose(c.body.rot) * d;
+    uint best = 0u;
+    float most = -2.0;
+    for (uint f = 0u; f < h.faces; f++) {
+        float s = dot(np_hull_plane(h, f).xyz, l);
+        if (s > most) {
+            most = s;
+            best = f;
+        }
+    }
+    uvec2 face = np_hull_face(h, best);
+    np_feature f;
+    for (uint k = 0u; k < face.y; k++)
+        f.v[k] = c.body.pos + c.body.rot * np_hull_face_vertex(h, face, k);
+    f.count = face.y;
+    f.normal = c.body.rot * np_hull_plane(h, best).xyz;
+    f.id = best;
+    return f;
+}
+
+np_feature np_triangle_feature(np_convex c, vec3 d)
+{
+    np_feature f;
+    f.v[0] = c.v0;
+    f.v[1] = c.v1;
+    f.v[2] = c.v2;
+    vec3 n = normalize(cross(c.v1 - c.v0, c.v2 - c.v0));
+    f.count = 3u;
+    f.normal = dot(n, d) >= 0.0 ? n : -n;
+    f.id = 0u;
+    return f;
+}
+
+// The feature shape c presents along the unit direction d, on its surface.
+np_feature np_feature_of(np_convex c, vec3 d)
+{
+    uint type = c.body.type;
+    if (type == TB_GPU_SHAPE_CAPSULE) return np_capsule_feature(c, d);
+    if (type == TB_GPU_SHAPE_CYLINDER) return np_cylinder_feature(c, d);
+    if (type == TB_GPU_SHAPE_CONE) return np_cone_feature(c, d);
+    if (type == TB_GPU_SHAPE_BOX) return np_box_feature(c, d);
+    if (type == TB_GPU_SHAPE_HULL) return np_hull_feature(c, d);
+    if (type == NP_SHAPE_TRIANGLE) return np_triangle_feature(c, d);
+    return np_feature_points(c.body.pos + c.radius * d, vec3(0.0), 1u, 0u);   // sphere
+}
+
+// ---- candidates: clipped corners with their separations and labels ------------------------
+
+vec4 np_cand[NP_CLIP_ROOM];     // xyz a point on the incident surface, w its separation
+uint np_cand_label[NP_CLIP_ROOM];
+uint np_cand_count;
+vec4 np_clip_buf[NP_CLIP_ROOM];  // the clipper's second polygon (w the label, float-coded)
+
+void np_cand_add(vec3 x, uint label)
+{
+    if (np_cand_count >= NP_CLIP_ROOM) return;
+    np_cand[np_cand_count] = vec4(x, 0.0);
+    np_cand_label[np_cand_count] = label;
+    np_cand_count++;
+}
+
+// Side s of a face polygon: xyz its outward unit normal within the face plane, w its offset
+// (inside: dot(xyz, x) <= w); zero for an edge of no length.
+vec4 np_face_side(np_feature f, uint s, vec3 centre)
+{
+    vec3 p = f.v[s], q = f.v[s + 1u == f.count ? 0u : s + 1u];
+    vec3 n = cross(q - p, f.normal);
+    if (dot(n, n) == 0.0) return vec4(0.0);
+    n = normalize(n);
+    if (dot(n, centre - p) > 0.0) n = -n;
+    return vec4(n, dot(n, p));
+}
+
+vec3 np_face_centre(np_feature f)
+{
+    vec3 c = vec3(0.0);
+    for (uint k = 0u; k < f.count; k++) c += f.v[k];
+    return c / float(f.count);
+}
+
+// The incident point if it lies in the reference face's prism (then the face normal is the
+// exact normal: a sphere or a capsule's end over a face).
+void np_clip_point(np_feature ref, vec3 x)
+{
+    vec3 centre = np_face_centre(ref);
+    np_cand_count = 0u;
+    for (uint s = 0u; s < ref.count; s++) {
+        vec4 side = np_face_side(ref, s, centre);
+        if (dot(side.xyz, x) > side.w) return;
+    }
+    np_cand_add(x, 0u);
+}
+
+// The incident line clipped to the reference face's prism.
+void np_clip_line(np_feature ref, np_feature inc)
+{
+    vec3 centre = np_face_centre(ref);
+    vec2 range = vec2(0.0, 1.0);
+    for (uint s = 0u; s < ref.count; s++) {
+        vec4 side = np_face_side(ref, s, centre);
+        float dp = dot(side.xyz, inc.v[0]) - side.w, dq = dot(side.xyz, inc.v[1]) - side.w;
+        if (dp > 0.0 && dq > 0.0) range = vec2(1.0, 0.0);
+        else if (dp > 0.0) range.x = max(range.x, dp / (dp - dq));
+        else if (dq > 0.0) range.y = min(range.y, dp / (dp - dq));
+    }
+    np_cand_count = 0u;
+    if (range.x > range.y) return;
+    np_cand_add(mix(inc.v[0], inc.v[1], range.x), 0u);
+    np_cand_add(mix(inc.v[0], inc.v[1], range.y), 1u);
+}
+
+// The incident polygon clipped by the reference face's side planes (Sutherland-Hodgman),
+// into np_cand.
+void np_clip_polygon(np_feature ref, np_feature inc)
+{
+    np_cand_count = 0u;
+    for (uint k = 0u; k < inc.count; k++) np_cand_add(inc.v[k], k);
+    vec3 centre = np_face_centre(ref);
+    for (uint s = 0u; s < ref.count && np_cand_count > 0u; s++) {
+        vec4 side = np_face_side(ref, s, centre);
+        if (side.xyz == vec3(0.0)) continue;
+        uint n = 0u;
+        for (uint k = 0u; k < np_cand_count; k++) {
+            vec4 p = np_cand[k], q = np_cand[k + 1u == np_cand_count ? 0u : k + 1u];
+            float dp = dot(side.xyz, p.xyz) - side.w, dq = dot(side.xyz, q.xyz) - side.w;
+            uint label = np_cand_label[k];
+            if (dp <= 0.0 && n < NP_CLIP_ROOM) np_clip_buf[n++] = vec4(p.xyz, float(label));
+            if ((dp <= 0.0) != (dq <= 0.0) && n < NP_CLIP_ROOM)
+                np_clip_buf[n++] = vec4(mix(p.xyz, q.xyz, dp / (dp - dq)),
+                                        float(((s + 1u) << 6u) | (label & 63u)));
+        }
+        for (uint k = 0u; k < n; k++) {
+            np_cand[k] = vec4(np_clip_buf[k].xyz, 0.0);
+            np_cand_label[k] = uint(np_clip_buf[k].w);
+        }
+        np_cand_count = n;
+    }
+}
+
+// The candidates below `plane` (xyz unit normal, w offset) plus the margin, at most four
+// (hull.glsl's reduction), each written midway between its surface point and the plane.
+uint np_cand_emit(np_target t, vec4 plane, float margin, uint key)
+{
+    uint n = 0u;
+    for (uint k = 0u; k < np_cand_count; k++) {
+        float separation = dot(plane.xyz, np_cand[k].xyz) - plane.w;
+        if (separation >= margin) continue;
+        np_cand[n] = vec4(np_cand[k].xyz, separation);
+        np_cand_label[n] = np_cand_label[k];
+        n++;
+    }
+    uint picked[4] = uint[4](NP_NONE, NP_NONE, NP_NONE, NP_NONE);
+    uint count = min(n, 4u);
+    for (uint pick = 0u; pick < count; pick++) {
+        float best = -3.0e38;
+        vec3 p0 = pick > 0u ? np_cand[picked[0]].xyz : vec3(0.0);
+        vec3 p1 = pick > 1u ? np_cand[picked[1]].xyz : vec3(0.0);
+        for (uint k = 0u; k < n; k++) {
+            bool taken = false;
+            for (uint m = 0u; m < pick; m++) taken = taken || picked[m] == k;
+            float score = n <= 4u ? float(n - k) : np_reduce_score(pick, np_cand[k].xyz, np_cand[k].w, p0, p1, plane.xyz);
+            if (!taken && (picked[pick] == NP_NONE || score > best)) {
+                best = score;
+                picked[pick] = k;
+            }
+        }
+    }
+    for (uint m = 0u; m < count; m++) {
+        vec4 c = np_cand[picked[m]];
+        np_emit(t, m, c.xyz - plane.xyz * (0.5 * c.w), c.w, key | np_cand_label[picked[m]]);
+    }
+    return count;
+}
+
+// The face contact: the incident feature clipped by the reference face; the normal from
+// the first shape to the second.
+uint np_face_contact(np_target t, np_feature ref, np_feature inc, bool ref_first, float margin,
+                     out vec3 normal)
+{
+    if (inc.count == 1u) np_clip_point(ref, inc.v[0]);
+    else if (inc.count == 2u) np_clip_line(ref, inc);
+    else np_clip_polygon(ref, inc);
+    normal = ref_first ? ref.normal : -ref.normal;
+    uint key = (ref_first ? 0u : 1u << 30) | ((ref.id & 255u) << 22) | ((inc.id & 255u) << 14);
+    return np_cand_emit(t, vec4(ref.normal, dot(ref.normal, ref.v[0])), margin, key);
+}
+
+// Two parallel lines: the second's part beside the first.
+uint np_line_contact(np_target t, np_feature a, np_feature b, vec3 n, float margin)
+{
+    vec3 da = a.v[1] - a.v[0];
+    float la = dot(da, da);
+    float s0 = dot(b.v[0] - a.v[0], da) / la, s1 = dot(b.v[1] - a.v[0], da) / la;
+    vec2 range = vec2(0.0, 1.0);
+    if (s0 != s1) {
+        float t0 = (0.0 - s0) / (s1 - s0), t1 = (1.0 - s0) / (s1 - s0);
+        range = vec2(max(0.0, min(t0, t1)), min(1.0, max(t0, t1)));
+    } else if (s0 < 0.0 || s0 > 1.0) {
+        range = vec2(1.0, 0.0);
+    }
+    np_cand_count = 0u;
+    if (range.x > range.y) return 0u;
+    np_cand_add(mix(b.v[0], b.v[1], range.x), 0u);
+    np_cand_add(mix(b.v[0], b.v[1], range.y), 1u);
+    uint key = ((a.id & 255u) << 22) | ((b.id & 255u) << 14);
+    return np_cand_emit(t, vec4(n, dot(n, a.v[0])), margin, key);
+}
+
+// The manifold of two shapes with unit normal n from A to B and their surface points pa,
+// pb closest along it (apart: the closest points; overlapping: EPA's witnesses).
+uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, vec3 pb,
+                       float margin, out vec3 normal)
+{
+    normal = n;
+    np_feature fa = np_feature_of(A, n), fb = np_feature_of(B, -n);
+    float align_a = fa.count >= 3u ? dot(fa.normal, n) : -2.0;
+    float align_b = fb.count >= 3u ? dot(fb.normal, -n) : -2.0;
+    uint count = 0u;
+    if (max(align_a, align_b) >= NP_FACE_COSINE) {
+        bool ref_a = align_a >= align_b;
+        count = np_face_contact(t, ref_a ? fa : fb, ref_a ? fb : fa, ref_a, margin, normal);
+    } else if (fa.count == 2u && fb.count == 2u &&
+               abs(dot(normalize(fa.v[1] - fa.v[0]), normalize(fb.v[1] - fb.v[0]))) > 0.985) {
+        count = np_line_contact(t, fa, fb, n, margin);
+    }
+    if (count > 0u) return count;
+    normal = n;
+    float separation = dot(pb - pa, n);
+    if (separation >= margin) return 0u;
+    np_emit(t, 0u, 0.5 * (pa + pb), separation, 1u << 31);
+    return 1u;
+}
+
+// ---- the pairs -----------------------------------------------------------------------------
+
+// Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
+// overlap. False when they are farther apart than the margin (or EPA found nothing).
+bool np_round_normal(np_convex A, np_convex B, float margin, out vec3 n, out vec3 pa,
+                     out vec3 pb)
+{
+    np_gjk_result g = np_gjk(A, B);
+    n = vec3(0.0, 1.0, 0.0);
+    pa = g.pa;
+    pb = g.pb;
+    if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
+        if (g.distance - A.radius - B.radius >= margin) return false;
+        n = (g.pb - g.pa) / g.distance;
+    } else {
+        np_epa_result e = np_epa(A, B, g.simplex);
+        if (!e.found) return false;
+        n = e.normal;
+        pa = e.pa;
+        pb = e.pb;
+    }
+    pa += n * A.radius;
+    pb -= n * B.radius;
+    return true;
+}
+
+uint np_convex_round(np_target t, np_body a, np_body b, float margin, out vec3 normal)
+{
+    normal = vec3(0.0);
+    np_convex A = np_convex_of(a), B = np_convex_of(b);
+    vec3 n, pa, pb;
+    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
+    return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
+}
+
+// A plane (first) and a round shape: the shape's feature towards the plane, its corners
+// measured from the plane.
+uint np_plane_round(np_target t, np_body plane, np_body b, float margin, out vec3 normal)
+{
+    vec4 half_space = np_world_plane(plane);
+    normal = half_space.xyz;
+    np_convex B = np_convex_of(b);
+    np_feature f = np_feature_of(B, -normal);
+    np_cand_count = 0u;
+    for (uint k = 0u; k < f.count; k++) np_cand_add(f.v[k], k);
+    return np_cand_emit(t, half_space, margin, (f.id & 255u) << 14);
+}
+
+// A mesh triangle (first) and a round shape, one-sided like triangle.glsl: a shape wholly
+// behind the triangle gets nothing; a contact whose normal would not leave the front, or
+// that touches an inactive edge or corner, takes the face normal.
+uint np_triangle_round(np_target t, np_body mesh, np_triangle tri, np_body b, float margin,
+                       out vec3 normal)
+{
+    normal = vec3(0.0);
+    if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
+    np_convex A = np_convex_of_triangle(mesh, tri), B = np_convex_of(b);
+    vec3 front = tri.normal;
+    float highest = dot(np_core_support(B, front) - tri.v0, front) + B.radius;
+    if (highest < 0.0) return 0u;
+    vec3 n, pa, pb;
+    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
+    uint feature;
+    np_tri_closest(tri, pa, feature);
+    bool face = dot(n, front) >= 0.9999;
+    if (!face && (dot(n, front) <= 0.0 || !np_tri_feature_active(tri, feature))) {
+        n = front;
+        pb = np_core_support(B, -front) - front * B.radius;
+        pa = pb - front * dot(pb - tri.v0, front);
+    }
+    return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
+}
+
+#endif

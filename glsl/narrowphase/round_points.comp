@@ -1,0 +1,57 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// Narrowphase of the pairs with a capsule, cylinder or cone (round.glsl): against any convex
+// shape (GJK, EPA), a plane, or a mesh triangle. One thread per pair; other pairs return at
+// once (contacts.comp and mesh_points.comp leave these alone). Recorded after hull_points
+// and before mesh_points while the world has such shapes, so mesh_reduce sees the triangle
+// pairs' points. Dispatched indirectly over counters.pair_dispatch.
+//
+// The round shapes come after every other convex shape and the plane in the canonical order
+// (by shape type), and after meshes too: here the second shape is always a round one.
+#include "world.glsl"
+#include "quat.glsl"
+#include "manifold.glsl"
+#include "sphere.glsl"
+#include "box_box.glsl"
+#include "hull.glsl"
+#include "hull_sat.glsl"
+#include "hull_clip.glsl"
+#include "../midphase/mesh.glsl"
+#include "triangle.glsl"
+#include "pair.glsl"
+#include "convex.glsl"
+#include "gjk.glsl"
+#include "epa.glsl"
+#include "round.glsl"
+
+uint round_points(uint p)
+{
+    np_pair q = np_pair_load(p);
+    if (!np_is_round(q.second.type)) return 0u;
+    // As contacts.comp: the block solver's stiffness of the pair carries over.
+    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
+    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    vec3 normal = vec3(0.0);
+    uint count;
+    uint first = q.first.type;
+    if (first == TB_GPU_SHAPE_PLANE) {
+        count = np_plane_round(q.t, q.first, q.second, q.margin, normal);
+    } else if (first == TB_GPU_SHAPE_MESH || first == TB_GPU_SHAPE_HEIGHTFIELD) {
+        np_triangle tri = np_load_triangle(q.first, q.triangle, q.first.rot, q.first.pos);
+        count = np_triangle_round(q.t, q.first, tri, q.second, q.margin, normal);
+    } else {
+        count = np_convex_round(q.t, q.first, q.second, q.margin, normal);
+    }
+    np_pair_finish(q, count, normal);
+    return count;
+}
+
+void main()
+{
+    if (counters.state.x != 0u) return;
+    uint p = pair_thread_index();
+    bool mine = p < counters.state.z && pairs[pair_half_base() + p].w != TB_PAIR_UNSPLIT;
+    np_count_points(mine ? round_points(p) : 0u);
+}
