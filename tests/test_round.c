@@ -213,14 +213,211 @@ static void test_cylinder_rolls_down_incline(void** state)
     assert_true(capsule > 2.0 / 3.0 * g && capsule < 5.0 / 7.0 * g);
 }
 
+/* ---- round shapes on each other ------------------------------------------------------- */
+
+typedef struct stacked {
+    tb_shape_type type;       /* TB_SHAPE_SPHERE, _BOX or a round type */
+    tb_quat rotation;
+    float x, y;               /* of its origin */
+} stacked;
+
+/* A tower of shapes (radius or half extent 0.3, half height 0.5) on a plane, each placed
+ * resting on those below: after 600 steps every one is within 1 mm of where it began. */
+static void tower(const stacked* parts, int count)
+{
+    tb_world* w = th_world_create(NULL);
+    make_ground(w, ON_PLANE);
+    tb_body_id bodies[8];
+    tb_vec3 start[8];
+    for (int i = 0; i < count; i++) {
+        tb_shape_id s;
+        if (parts[i].type == TB_SHAPE_SPHERE) s = th_sphere(w, 0.3f);
+        else if (parts[i].type == TB_SHAPE_BOX) s = th_box(w, th_v3(0.3f, 0.5f, 0.3f));
+        else s = make_round(w, parts[i].type, 0.3f, 0.5f);
+        start[i] = th_v3(parts[i].x, parts[i].y, 0.01f * i);
+        tb_body_def def = th_dynamic_def(s, start[i]);
+        def.rotation = parts[i].rotation;
+        bodies[i] = th_body(w, &def);
+    }
+    step(w, 600);
+    for (int i = 0; i < count; i++) {
+        tb_vec3 p;
+        tb_quat q;
+        th_read_pose(w, bodies[i], &p, &q);
+        printf("tower part %d (type %d): drift %.3f mm\n", i, (int)parts[i].type,
+               1e3 * dist3(p, start[i]));
+        assert_true(dist3(p, start[i]) < 1e-3);
+    }
+    th_world_destroy(w);
+}
+
+#define SIDE_Z { 0.70710678f, 0, 0, 0.70710678f }   /* axis along z */
+#define SIDE_X { 0, 0, 0.70710678f, 0.70710678f }   /* axis along x */
+#define UP { 0, 0, 0, 1 }
+
+static void test_round_towers(void** state)
+{
+    (void)state;
+    /* Cylinders cap on cap (two octagons clipped), a cone on them. */
+    const stacked cylinders[] = { { TB_SHAPE_CYLINDER, UP, 0, 0.5f },
+                                  { TB_SHAPE_CYLINDER, UP, 0.02f, 1.5f },
+                                  { TB_SHAPE_CONE, UP, 0.04f, 2.25f } };
+    tower(cylinders, 3);
+    /* Three capsules lying, the third in the groove of the other two (parallel lines at 60
+     * degrees from the floor). */
+    float groove = 0.3f + 0.6f * (float)sin(M_PI / 3);
+    const stacked capsules[] = { { TB_SHAPE_CAPSULE, SIDE_Z, -0.3f, 0.3f },
+                                 { TB_SHAPE_CAPSULE, SIDE_Z, 0.3f, 0.3f },
+                                 { TB_SHAPE_CAPSULE, SIDE_Z, 0, groove } };
+    tower(capsules, 3);
+    /* A cylinder standing on a box, a capsule lying across a standing cylinder's cap (a line
+     * clipped by the octagon), a cone on its base on a box. (A cylinder lying on a box that
+     * rests on the floor rolls on the least push: that rest is neutral, not asked for.) */
+    const stacked standing[] = { { TB_SHAPE_BOX, UP, 0, 0.5f }, { TB_SHAPE_CYLINDER, UP, 0.1f, 1.5f } };
+    tower(standing, 2);
+    const stacked across[] = { { TB_SHAPE_CYLINDER, UP, 0, 0.5f }, { TB_SHAPE_CAPSULE, SIDE_X, 0, 1.3f } };
+    tower(across, 2);
+    const stacked cone[] = { { TB_SHAPE_BOX, UP, 0, 0.5f }, { TB_SHAPE_CONE, UP, 0.1f, 1.25f } };
+    tower(cone, 2);
+}
+
+/* ---- sizes, mass and refusals --------------------------------------------------------- */
+
+/* Volume and principal moments per unit mass of a solid of revolution about y, integrated
+ * on a fine grid of (distance from the axis, height) cells: the reference for the closed
+ * forms the library uses. inside(rho, y) says whether the point lies in the solid. */
+typedef int (*solid_fn)(double rho, double y, double r, double h);
+
+static int in_capsule(double rho, double y, double r, double h)
+{
+    double dy = fabs(y) > h ? fabs(y) - h : 0;
+    return rho * rho + dy * dy <= r * r;
+}
+
+static int in_cylinder(double rho, double y, double r, double h)
+{
+    return rho <= r && fabs(y) <= h;
+}
+
+static int in_cone(double rho, double y, double r, double h)
+{
+    return y >= -h / 2 && y <= 1.5 * h && rho <= r * (1.5 * h - y) / (2 * h);
+}
+
+static void integrate(solid_fn inside, double r, double h, double out[4])
+{
+    const int n = 1500;
+    /* The solid's extent along y: cells straddle its ends only. */
+    double y0 = inside == in_capsule ? -h - r : (inside == in_cone ? -h / 2 : -h);
+    double y1 = inside == in_capsule ? h + r : (inside == in_cone ? 1.5 * h : h);
+    double dr = r / n, dy = (y1 - y0) / (2 * n);
+    double v = 0, my = 0, iy = 0, ix = 0;
+    for (int j = 0; j < 2 * n; j++) {
+        double y = y0 + (j + 0.5) * dy;
+        for (int i = 0; i < n; i++) {
+            double rho = (i + 0.5) * dr;
+            if (!inside(rho, y, r, h)) continue;
+            double dv = 2 * M_PI * rho * dr * dy;
+            v += dv;
+            my += y * dv;
+            iy += rho * rho * dv;
+            ix += (y * y + rho * rho / 2) * dv;
+        }
+    }
+    out[0] = v;
+    out[1] = my / v;          /* the centre of mass's height: 0 */
+    out[2] = ix / v;
+    out[3] = iy / v;
+}
+
+static void check_mass(tb_world* w, tb_shape_type type, solid_fn inside, float r, float h)
+{
+    tb_shape_id s = make_round(w, type, r, h);
+    float radius, half_height;
+    th_assert_ok(tb_shape_get_round_size(w, s, &radius, &half_height));
+    assert_true(radius == r && half_height == h);
+    tb_shape_type got;
+    th_assert_ok(tb_shape_get_type(w, s, &got));
+    assert_int_equal(got, type);
+    tb_body_def def = th_dynamic_def(s, th_v3(0, 0, 0));
+    tb_body_id body = th_body(w, &def);
+    float mass;
+    tb_vec3 inertia;
+    th_assert_ok(tb_body_get_mass(w, body, &mass, &inertia));
+    double ref[4];
+    integrate(inside, r, h, ref);
+    th_assert_near(mass, 1000 * ref[0], 0, 2e-3);
+    th_assert_near(ref[1], 0, 1e-3 * (r + h), 0);
+    th_assert_near(inertia.x / mass, ref[2], 0, 3e-3);
+    th_assert_near(inertia.z / mass, ref[2], 0, 3e-3);
+    th_assert_near(inertia.y / mass, ref[3], 0, 3e-3);
+    th_assert_ok(tb_body_destroy(w, body));
+}
+
+static void test_sizes_and_mass(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    check_mass(w, TB_SHAPE_CAPSULE, in_capsule, 0.3f, 0.5f);
+    check_mass(w, TB_SHAPE_CAPSULE, in_capsule, 0.5f, 0.0f);
+    check_mass(w, TB_SHAPE_CYLINDER, in_cylinder, 0.3f, 0.5f);
+    check_mass(w, TB_SHAPE_CYLINDER, in_cylinder, 2.0f, 0.05f);
+    check_mass(w, TB_SHAPE_CONE, in_cone, 0.3f, 0.5f);
+    check_mass(w, TB_SHAPE_CONE, in_cone, 1.0f, 0.2f);
+    th_world_destroy(w);
+}
+
+static void test_bad_round_shapes_refused(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create_ex(NULL, 1);
+    tb_shape_def def = tb_default_shape_def();
+    tb_shape_id s = { 0 }, kept = make_round(w, TB_SHAPE_CYLINDER, 1, 1);
+    const float bad_radius[] = { 0.0f, -1.0f, NAN, INFINITY, 2e6f };
+    for (size_t i = 0; i < sizeof bad_radius / sizeof *bad_radius; i++) {
+        th_assert_result(tb_shape_create_capsule(w, &def, bad_radius[i], 1, &s), TB_ERROR_INVALID_ARGUMENT);
+        assert_non_null(strstr(tb_world_last_error(w), "capsule needs"));
+        th_assert_result(tb_shape_create_cylinder(w, &def, bad_radius[i], 1, &s), TB_ERROR_INVALID_ARGUMENT);
+        assert_non_null(strstr(tb_world_last_error(w), "cylinder needs"));
+        th_assert_result(tb_shape_create_cone(w, &def, bad_radius[i], 1, &s), TB_ERROR_INVALID_ARGUMENT);
+        assert_non_null(strstr(tb_world_last_error(w), "cone needs"));
+    }
+    const float bad_height[] = { -1.0f, NAN, -INFINITY, 2e6f };
+    for (size_t i = 0; i < sizeof bad_height / sizeof *bad_height; i++) {
+        th_assert_result(tb_shape_create_capsule(w, &def, 1, bad_height[i], &s), TB_ERROR_INVALID_ARGUMENT);
+        th_assert_result(tb_shape_create_cylinder(w, &def, 1, bad_height[i], &s), TB_ERROR_INVALID_ARGUMENT);
+        th_assert_result(tb_shape_create_cone(w, &def, 1, bad_height[i], &s), TB_ERROR_INVALID_ARGUMENT);
+    }
+    /* A flat cylinder or cone has no volume; a capsule of no length is a ball. */
+    th_assert_result(tb_shape_create_cylinder(w, &def, 1, 0, &s), TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_cone(w, &def, 1, 0, &s), TB_ERROR_INVALID_ARGUMENT);
+    th_assert_result(tb_shape_create_capsule(w, &def, 1, 1, NULL), TB_ERROR_INVALID_ARGUMENT);
+    tb_shape_def raw;
+    memset(&raw, 0, sizeof raw);
+    th_assert_result(tb_shape_create_cone(w, &raw, 1, 1, &s), TB_ERROR_INVALID_ARGUMENT);
+    assert_int_equal(s.index1, 0);
+    /* Nothing was made: the one good shape is the only one. */
+    tb_shape_id ids[4];
+    assert_int_equal(tb_world_shape_ids(w, ids, 4), 1);
+    float r, h;
+    th_assert_result(tb_shape_get_round_size(w, kept, NULL, &h), TB_ERROR_INVALID_ARGUMENT);
+    tb_shape_id ball = th_sphere(w, 1);
+    th_assert_result(tb_shape_get_round_size(w, ball, &r, &h), TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "is not a capsule, cylinder or cone"));
+    th_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_sizes_and_mass),
+        cmocka_unit_test(test_bad_round_shapes_refused),
         cmocka_unit_test(test_rest_on_plane),
         cmocka_unit_test(test_rest_on_box),
         cmocka_unit_test(test_rest_on_hull),
         cmocka_unit_test(test_rest_on_mesh),
         cmocka_unit_test(test_cylinder_rolls_down_incline),
+        cmocka_unit_test(test_round_towers),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
