@@ -5,7 +5,8 @@
  * behind an opaque wall is hidden, and a see-through wall shows what is behind it; convex
  * hull bodies are drawn, each its own shape, inside their projections; triangle-mesh
  * bodies are drawn where their triangles project, lit from their front, only while the
- * bodies live; an empty world
+ * bodies live; capsules, cylinders and cones (a compound's capsule too) keep their
+ * proportions; an empty world
  * renders; the automatic camera frames a few spheres. Pixels are classified by colour
  * family, not compared exactly, except the cleared sky and the contact overlay's two
  * colours. */
@@ -810,6 +811,156 @@ static void test_mesh_bodies(void** state)
     th_world_destroy(w);
 }
 
+/* ---- capsules, cylinders and cones ---- */
+
+/* Their colour families (TR_COLOR_BY_SHAPE, common.glsl), lit by 0.35..1: capsules teal,
+ * cylinders yellow, cones magenta, compounds purple. */
+static int is_capsule(const uint8_t* p) { return p[1] - p[0] > 35 && abs(p[1] - p[2]) <= 12; }
+static int is_cylinder(const uint8_t* p)
+{
+    return p[0] - p[2] > 40 && p[1] - p[2] > 40 && abs(p[0] - p[1]) <= 12;
+}
+static int is_cone(const uint8_t* p)
+{
+    return p[0] - p[1] > 40 && p[2] - p[1] > 30 && p[0] > p[2];
+}
+static int is_compound(const uint8_t* p)
+{
+    return p[2] > p[0] && p[0] > p[1] && p[2] - p[1] > 30;
+}
+
+/* A round shape as placed in the world: its centre (its body origin) and its y axis. */
+typedef struct round_frame { double centre[3], axis[3]; } round_frame;
+
+static round_frame read_round_frame(tb_world* w, tb_body_id id)
+{
+    tb_vec3 pos;
+    tb_quat q;
+    th_read_pose(w, id, &pos, &q);
+    round_frame f = { { pos.x, pos.y, pos.z }, { 0, 0, 0 } };
+    th_quat_rotate(q, (const double[3]){ 0, 1, 0 }, f.axis);
+    return f;
+}
+
+/* The pixel of the point `along` the frame's axis from its centre and `across` it (square to
+ * the axis and to the view) must (want 1) or must not (want 0) be of `family`. */
+static void expect_round(const tr_camera* c, const uint8_t* rgba, const round_frame* f,
+                         double along, double across, int (*family)(const uint8_t*), int want,
+                         const char* what)
+{
+    const double* a = f->axis;
+    double view[3] = { c->eye.x - f->centre[0], c->eye.y - f->centre[1],
+                       c->eye.z - f->centre[2] };
+    double side[3] = { a[1] * view[2] - a[2] * view[1], a[2] * view[0] - a[0] * view[2],
+                       a[0] * view[1] - a[1] * view[0] };
+    double len = sqrt(side[0] * side[0] + side[1] * side[1] + side[2] * side[2]), p[3], px, py;
+    for (int i = 0; i < 3; i++) p[i] = f->centre[i] + along * a[i] + across * side[i] / len;
+    if (!project(c, W, H, p, &px, &py) || px < 0 || py < 0 || px >= W || py >= H)
+        fail_msg("%s: (%.2f, %.2f) projects outside the image", what, along, across);
+    const uint8_t* q = pixel(rgba, W, (int)floor(px), (int)floor(py));
+    char got[48];
+    describe(q, got, sizeof got);
+    if (!family(q) != !want)
+        fail_msg("%s: the point %.2f along, %.2f across, at pixel (%.0f, %.0f), is %s%s", what,
+                 along, across, px, py, want ? "not its colour: " : "its colour: ", got);
+}
+
+/* A capsule of radius r and half height h lying square to the view: full width all along
+ * its segment, its caps reaching r past the segment's ends and no farther, and round (an
+ * ellipsoid or a stretched sphere as long fails the first or the last). */
+static void check_capsule(const tr_camera* c, const uint8_t* rgba, const round_frame* f,
+                          double r, double h, int (*family)(const uint8_t*), const char* what)
+{
+    for (int end = -1; end <= 1; end += 2) {
+        expect_round(c, rgba, f, end * h, 0.88 * r, family, 1, what);
+        expect_round(c, rgba, f, end * (h + 0.8 * r), 0, family, 1, what);
+        expect_round(c, rgba, f, end * (h + 1.3 * r), 0, family, 0, what);
+        expect_round(c, rgba, f, end * (h + 0.85 * r), 0.85 * r, family, 0, what);
+    }
+}
+
+#define ROUND_R 0.4
+#define ROUND_H 0.5
+
+/* A capsule lying square to the view, a cylinder standing, a compound of a capsule (also
+ * square to the view) and a sphere, seen by the fixed camera: each in its colour where it
+ * is, its proportions kept (the capsule's caps round, not stretched; the cylinder's rims
+ * square), and not past its ends. A cone made after the first frame, base down, shows in
+ * the next: wide near its base, narrow near its apex. */
+static void test_round_bodies(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    tb_shape_def sd = tb_default_shape_def();
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_id capsule, cylinder, cone, compound;
+    const float radius = (float)ROUND_R, half = (float)ROUND_H;
+    th_assert_ok(tb_shape_create_capsule(w, &sd, radius, half, &capsule));
+    th_assert_ok(tb_shape_create_cylinder(w, &sd, radius, half, &cylinder));
+    /* Turns y to (5, 0, -4), square to the view from (4, 3, 5). */
+    const tb_quat square = th_quat_axis_angle(th_v3(-4, 0, -5), PI / 2);
+    const tb_compound_child children[2] = {
+        { capsule, { 0, 0, 0 }, square },
+        { th_sphere(w, 0.3f), { 0.4f, 0, 0.5f }, { 0, 0, 0, 1 } },
+    };
+    th_assert_ok(tb_shape_create_compound(w, children, 2, &compound));
+    tb_compound_info info;
+    th_assert_ok(tb_shape_get_compound_info(w, compound, &info));
+    tb_body_def lying = th_dynamic_def(capsule, th_v3(-0.8f, radius, 1.0f));
+    lying.rotation = square;
+    tb_body_def standing = th_dynamic_def(cylinder, th_v3(-0.3f, half, -0.8f));
+    /* The compound's body frame turned back to the children's: the capsule child lies at
+     * (1.3, radius, 0.9), square to the view. */
+    tb_vec3 com = info.center_of_mass;
+    tb_body_def joined = th_dynamic_def(compound, th_v3(1.3f + com.x, radius + com.y,
+                                                        0.9f + com.z));
+    joined.rotation = info.principal_axes;
+    tb_body_id lying_id = th_body(w, &lying), standing_id = th_body(w, &standing);
+    th_body(w, &joined);
+    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+
+    tr_options o = fixed_camera_options();
+    tr_renderer* r = renderer(w, &o);
+    uint8_t* rgba = malloc((size_t)W * H * 4);
+    assert_non_null(rgba);
+    render(r, w);
+    th_assert_ok(tr_read_pixels(r, rgba));
+    th_assert_ok(tr_write_png(r, png_path("round")));
+    tr_camera c = tr_last_camera(r);
+    round_frame f = read_round_frame(w, lying_id);
+    expect_round(&c, rgba, &f, 0, 0, is_capsule, 1, "the lying capsule");
+    check_capsule(&c, rgba, &f, ROUND_R, ROUND_H, is_capsule, "the lying capsule");
+    const round_frame child = { { 1.3, ROUND_R, 0.9 }, { 5 / sqrt(41.0), 0, -4 / sqrt(41.0) } };
+    check_capsule(&c, rgba, &child, ROUND_R, ROUND_H, is_compound, "the compound's capsule");
+    f = read_round_frame(w, standing_id);
+    expect_round(&c, rgba, &f, 0, 0, is_cylinder, 1, "the cylinder");
+    for (int end = -1; end <= 1; end += 2) {
+        expect_round(&c, rgba, &f, end * 0.85 * ROUND_H, 0.85 * ROUND_R, is_cylinder, 1,
+                     "the cylinder's rim");
+        expect_round(&c, rgba, &f, end * (ROUND_H + 0.8 * ROUND_R), 0, is_cylinder, 0,
+                     "past the cylinder's end");
+    }
+
+    th_assert_ok(tb_shape_create_cone(w, &sd, radius, half, &cone));
+    tb_body_def upright = th_dynamic_def(cone, th_v3(1.1f, half / 2, -1.2f));
+    tb_body_id cone_id = th_body(w, &upright);
+    th_assert_ok(tb_world_step(w, 1.0f / 60.0f));
+    render(r, w);
+    th_assert_ok(tr_read_pixels(r, rgba));
+    f = read_round_frame(w, cone_id);
+    expect_round(&c, rgba, &f, 0, 0, is_cone, 1, "the cone's centre of mass");
+    expect_round(&c, rgba, &f, -0.4 * ROUND_H, 0.8 * ROUND_R, is_cone, 1,
+                 "the cone near its base");
+    expect_round(&c, rgba, &f, 1.1 * ROUND_H, 0, is_cone, 1, "the cone near its apex");
+    expect_round(&c, rgba, &f, 1.1 * ROUND_H, 0.6 * ROUND_R, is_cone, 0, "beside its apex");
+    expect_round(&c, rgba, &f, 1.5 * ROUND_H + 0.5 * ROUND_R, 0, is_cone, 0, "above its apex");
+
+    free(rgba);
+    tr_destroy(r);
+    th_world_destroy(w);
+}
+
 static void test_empty_world(void** state)
 {
     (void)state;
@@ -907,6 +1058,7 @@ int main(void)
         cmocka_unit_test(test_contacts_behind_wall),
         cmocka_unit_test(test_hull_bodies),
         cmocka_unit_test(test_mesh_bodies),
+        cmocka_unit_test(test_round_bodies),
         cmocka_unit_test(test_empty_world),
         cmocka_unit_test(test_automatic_camera),
     };

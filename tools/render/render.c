@@ -1,11 +1,12 @@
 /* tools/render: the public tr_ calls. A frame is one command buffer on the world's queue:
  * a barrier after the world's compute writes, a compute pass that lists the bodies of each
  * triangle-mesh shape (render_meshes.c), one render pass (planes, then instanced spheres,
- * boxes, hulls and meshes, then AABB lines, then contact lines, depth-tested, then the
- * static bodies see-through), a copy of the colour image into a host-visible buffer, and a
- * wait on our own fence. Bodies and contacts are never looped over on the host, except to
- * read AABBs for the automatic camera and to know whether a plane exists; shapes are, to
- * keep a mesh per hull and mesh shape (render_hulls.c). */
+ * boxes, capsules, cylinders, cones, hulls and meshes, then AABB lines, then contact lines,
+ * depth-tested, then the static bodies see-through), a copy of the colour image into a
+ * host-visible buffer, and a wait on our own fence. Bodies and contacts are never looped
+ * over on the host, except to read AABBs for the automatic camera and to know whether a
+ * plane exists; shapes are, to keep a mesh per hull and mesh shape and to know which shape
+ * types live (render_hulls.c). */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -216,17 +217,19 @@ static void draw_mesh_shapes(const tr_renderer* r, tr_push* p)
     }
 }
 
-/* Spheres, boxes and each hull and compound shape's mesh, every body slot an instance of each (the
+/* The unit mesh of each shape type that has one (spheres, boxes, capsules, cylinders,
+ * cones) and each hull and compound shape's mesh, every body slot an instance of each (the
  * shaders hide the slots that are not theirs), then the mesh shapes, with the bound mesh
- * pipeline. */
+ * pipeline. A unit mesh is drawn only while a shape of its type lives. */
 static void draw_bodies(const tr_renderer* r, tr_push* p, uint32_t slots)
 {
     VkCommandBuffer cb = r->cb;
     VkDeviceSize zero = 0;
     vkCmdBindVertexBuffers(cb, 0, 1, &r->vertices.buffer, &zero);
     vkCmdBindIndexBuffer(cb, r->indices.buffer, 0, VK_INDEX_TYPE_UINT32);
-    draw_mesh(r, p, TB_GPU_SHAPE_SPHERE, &r->sphere, slots);
-    draw_mesh(r, p, TB_GPU_SHAPE_BOX, &r->cube, slots);
+    for (uint32_t type = 0; type < TR_SHAPE_TYPES; type++)
+        if (r->units[type].index_count && (r->shape_types & (1u << type)))
+            draw_mesh(r, p, type, &r->units[type], slots);
     for (uint32_t i = 0; i < r->hull_draw_count; i++) {
         const tr_shape_draw* h = &r->hull_draws[i];
         p->mode[0] = h->shape_type;

@@ -1,19 +1,18 @@
-/* Compound shapes' meshes: each child's mesh (the unit sphere or cube scaled by the child's
- * size, or the hull's own mesh) placed by the child's pose in the compound's body frame,
- * all in one flat list drawn like a hull shape's (render_hulls.c). */
+/* Compound shapes' meshes: each child's mesh (its type's unit mesh sized by the child's
+ * params as mesh.vert sizes it, or the hull's own mesh) placed by the child's pose in the
+ * compound's body frame, all in one flat list drawn like a hull shape's (render_hulls.c). */
 #include <stdlib.h>
 #include <string.h>
 
 #include <cglm/cglm.h>
 
-#include "layout.h"
 #include "render_internal.h"
 
-/* Vertex v scaled, then placed by the child's pose. */
-static tr_vertex place(const tr_vertex* v, tb_vec3 scale, const tb_compound_child* c)
+/* Vertex v (in the child's frame) placed by the child's pose. */
+static tr_vertex place(const tr_vertex* v, const tb_compound_child* c)
 {
     versor q = { c->rotation.x, c->rotation.y, c->rotation.z, c->rotation.w };
-    vec3 p = { v->position[0] * scale.x, v->position[1] * scale.y, v->position[2] * scale.z };
+    vec3 p = { v->position[0], v->position[1], v->position[2] };
     vec3 n = { v->normal[0], v->normal[1], v->normal[2] };
     tr_vertex out;
     glm_quat_rotatev(q, p, out.position);
@@ -23,16 +22,41 @@ static tr_vertex place(const tr_vertex* v, tb_vec3 scale, const tb_compound_chil
     return out;
 }
 
-/* A unit mesh's triangles (the sphere's or the cube's), vertex by vertex. */
-static tb_result unit_child(tr_renderer* r, const tr_mesh* m, tb_vec3 scale,
+/* The size of a child with a unit mesh, as its GPU shape's params hold it (sphere: x the
+ * radius; box: xyz the half extents; capsule, cylinder, cone: x the radius, y the half
+ * height). */
+static tb_result unit_params(tr_renderer* r, tb_shape_id shape, tb_shape_type type,
+                             float params[4])
+{
+    tb_result res;
+    if (type == TB_SHAPE_SPHERE) {
+        res = tb_shape_get_sphere_radius(r->world, shape, &params[0]);
+    } else if (type == TB_SHAPE_BOX) {
+        tb_vec3 half = { 0, 0, 0 };
+        res = tb_shape_get_box_half_extents(r->world, shape, &half);
+        params[0] = half.x; params[1] = half.y; params[2] = half.z;
+    } else {
+        res = tb_shape_get_round_size(r->world, shape, &params[0], &params[1]);
+    }
+    if (res)
+        return tr_fail(r, res, "a compound child's size: %s", tb_world_last_error(r->world));
+    return TB_OK;
+}
+
+/* A unit mesh's triangles sized by `params`, vertex by vertex. */
+static tb_result unit_child(tr_renderer* r, tb_shape_type type, const float params[4],
                             const tb_compound_child* c, tr_vertex** out, uint32_t* count)
 {
+    const tr_mesh* m = &r->units[type];
     const tr_vertex* vertices = r->vertices.mapped;
     const uint32_t* indices = r->indices.mapped;
     tr_vertex* v = malloc((m->index_count ? m->index_count : 1) * sizeof *v);
     if (!v) return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for a compound mesh");
-    for (uint32_t k = 0; k < m->index_count; k++)
-        v[k] = place(&vertices[m->vertex_offset + (int32_t)indices[m->first_index + k]], scale, c);
+    for (uint32_t k = 0; k < m->index_count; k++) {
+        int32_t at = m->vertex_offset + (int32_t)indices[m->first_index + k];
+        tr_vertex sized = tr_sized_vertex((uint32_t)type, params, &vertices[at]);
+        v[k] = place(&sized, c);
+    }
     *out = v;
     *count = m->index_count;
     return TB_OK;
@@ -46,18 +70,15 @@ static tb_result child_vertices(tr_renderer* r, const tb_compound_child* c, tr_v
     *out = NULL;
     *count = 0;
     tb_result res = tb_shape_get_type(r->world, c->shape, &type);
-    if (type == TB_SHAPE_SPHERE) {
-        float radius = 0;
-        if (!res) res = tb_shape_get_sphere_radius(r->world, c->shape, &radius);
-        return res ? res : unit_child(r, &r->sphere, (tb_vec3){ radius, radius, radius }, c, out, count);
+    if (res)
+        return tr_fail(r, res, "a compound child's type: %s", tb_world_last_error(r->world));
+    if ((uint32_t)type < TR_SHAPE_TYPES && r->units[type].index_count) {
+        float params[4] = { 0, 0, 0, 0 };
+        res = unit_params(r, c->shape, type, params);
+        return res ? res : unit_child(r, type, params, c, out, count);
     }
-    if (type == TB_SHAPE_BOX) {
-        tb_vec3 half = { 0, 0, 0 };
-        if (!res) res = tb_shape_get_box_half_extents(r->world, c->shape, &half);
-        return res ? res : unit_child(r, &r->cube, half, c, out, count);
-    }
-    if (!res) res = tr_hull_vertices(r, c->shape, out, count);
-    for (uint32_t k = 0; !res && k < *count; k++) (*out)[k] = place(&(*out)[k], (tb_vec3){ 1, 1, 1 }, c);
+    res = tr_hull_vertices(r, c->shape, out, count);
+    for (uint32_t k = 0; !res && k < *count; k++) (*out)[k] = place(&(*out)[k], c);
     return res;
 }
 

@@ -254,25 +254,33 @@ void tr_targets_destroy(tr_renderer* r)
     r->has_frame = 0;
 }
 
-/* Both meshes in one host-visible vertex buffer and one index buffer, written once before
- * any submission reads them (so no barrier is needed). */
+/* The unit meshes in one host-visible vertex buffer and one index buffer, written once
+ * before any submission reads them (so no barrier is needed). */
 tb_result tr_meshes_create(tr_renderer* r)
 {
-    const uint32_t nv = TR_SPHERE_VERTICES + TR_CUBE_VERTICES;
-    const uint32_t ni = TR_SPHERE_INDICES + TR_CUBE_INDICES;
-    tb_result res = tr_host_buffer(r, nv * sizeof(tr_vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                   &r->vertices);
-    if (!res) res = tr_host_buffer(r, ni * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
-                                   &r->indices);
+    static const struct { uint32_t type; tr_unit_mesh_fn* build; } units[] = {
+        { TB_GPU_SHAPE_SPHERE, tr_sphere_mesh }, { TB_GPU_SHAPE_BOX, tr_cube_mesh },
+        { TB_GPU_SHAPE_CAPSULE, tr_capsule_mesh }, { TB_GPU_SHAPE_CYLINDER, tr_cylinder_mesh },
+        { TB_GPU_SHAPE_CONE, tr_cone_mesh },
+    };
+    tb_result res = tr_host_buffer(r, TR_UNIT_VERTICES * sizeof(tr_vertex),
+                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, &r->vertices);
+    if (!res) res = tr_host_buffer(r, TR_UNIT_INDICES * sizeof(uint32_t),
+                                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, &r->indices);
     if (res) return res;
     tr_vertex* v = r->vertices.mapped;
     uint32_t* idx = r->indices.mapped;
-    uint32_t count;
-    uint32_t sphere_vertices = tr_sphere_mesh(v, idx, &count);
-    r->sphere = (tr_mesh){ 0, count, 0 };
-    tr_cube_mesh(v + sphere_vertices, idx + count, &r->cube.index_count);
-    r->cube.first_index = count;
-    r->cube.vertex_offset = (int32_t)sphere_vertices;
+    uint32_t nv = 0, ni = 0;
+    for (size_t i = 0; i < sizeof units / sizeof units[0]; i++) {
+        uint32_t count;
+        uint32_t vertices = units[i].build(v + nv, idx + ni, &count);
+        r->units[units[i].type] = (tr_mesh){ ni, count, (int32_t)nv };
+        nv += vertices;
+        ni += count;
+    }
+    if (nv != TR_UNIT_VERTICES || ni != TR_UNIT_INDICES)
+        return tr_fail(r, TB_ERROR_DEVICE, "the unit meshes have %u vertices and %u indices, "
+                       "not %u and %u", nv, ni, TR_UNIT_VERTICES, TR_UNIT_INDICES);
     return TB_OK;
 }
 

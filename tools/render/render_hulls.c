@@ -1,5 +1,7 @@
 /* Convex hull shapes: their meshes, built on the host from the public API; and the
- * upkeep of every shape's own mesh, triangle-mesh shapes' (render_meshes.c) included.
+ * upkeep of every shape's own mesh, triangle-mesh shapes' (render_meshes.c) included, and
+ * of the set of shape types that live (a unit mesh is drawn only while a shape of its type
+ * lives).
  *
  * A hull body reads its shape slot from the world's body arrays (body_info.x), as every
  * body draw does; the hull's geometry is not in the arrays the renderer binds, so each hull
@@ -309,8 +311,7 @@ static void place_meshes(tr_renderer* r, const shape_mesh* meshes, uint32_t coun
  * (no frame is in flight: every frame waits for its fence). */
 static tb_result upload(tr_renderer* r, shape_mesh* meshes, uint32_t count)
 {
-    const uint32_t unit_vertices = TR_SPHERE_VERTICES + TR_CUBE_VERTICES;
-    const uint32_t unit_indices = TR_SPHERE_INDICES + TR_CUBE_INDICES;
+    const uint32_t unit_vertices = TR_UNIT_VERTICES, unit_indices = TR_UNIT_INDICES;
     uint64_t total = 0;
     for (uint32_t i = 0; i < count; i++) total += meshes[i].vertex_count;
     /* Draws take 32-bit index counts and offsets. */
@@ -342,12 +343,15 @@ static tb_result upload(tr_renderer* r, shape_mesh* meshes, uint32_t count)
 }
 
 /* The mesh of shape `id` in slot `s`, if it is a hull, a compound or a triangle mesh:
- * *made says. */
+ * *made says. out->type is its type either way (TB_SHAPE_TYPE_FORCE_32 if unknown). */
 static tb_result shape_mesh_of(tr_renderer* r, tb_shape_id id, uint32_t s, shape_mesh* out,
                                int* made)
 {
     *made = 0;
-    if (tb_shape_get_type(r->world, id, &out->type) != TB_OK) return TB_OK;
+    if (tb_shape_get_type(r->world, id, &out->type) != TB_OK) {
+        out->type = TB_SHAPE_TYPE_FORCE_32;
+        return TB_OK;
+    }
     if (out->type != TB_SHAPE_HULL && out->type != TB_SHAPE_MESH &&
         out->type != TB_SHAPE_COMPOUND)
         return TB_OK;
@@ -372,12 +376,15 @@ static tb_result rescan(tr_renderer* r, uint32_t slots, uint32_t live)
         return tr_fail(r, TB_ERROR_OUT_OF_MEMORY, "no host memory for shape meshes");
     }
     uint32_t found = tb_world_shape_ids(r->world, live_ids, live), count = 0;
+    r->shape_types = 0;
     for (uint32_t i = 0; i < found && !res; i++) {
         uint32_t s = live_ids[i].index1 - 1;
         if (s >= slots) continue;   /* made after the bodies' arrays were read: next frame */
         r->shape_ids[s] = live_ids[i];
         int made;
         res = shape_mesh_of(r, live_ids[i], s, &meshes[count], &made);
+        uint32_t type = (uint32_t)meshes[count].type;
+        if (type < TR_SHAPE_TYPES) r->shape_types |= 1u << type;
         count += made;
     }
     if (!res) res = upload(r, meshes, count);
@@ -411,5 +418,6 @@ void tr_hulls_destroy(tr_renderer* r)
     r->hull_draw_count = r->mesh_draw_count = 0;
     r->shape_ids = NULL;
     r->shape_capacity = 0;
+    r->shape_types = 0;
     r->hulls_scanned = 0;
 }

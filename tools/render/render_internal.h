@@ -4,8 +4,12 @@
 
 #include <stdarg.h>
 
+#include "layout.h"        /* TB_GPU_SHAPE_* */
 #include "render.h"
 #include "tumble_vulkan.h"
+
+/* Shape types the renderer knows: TB_GPU_SHAPE_SPHERE .. TB_GPU_SHAPE_CONE. */
+#define TR_SHAPE_TYPES (TB_GPU_SHAPE_CONE + 1)
 
 /* The clear colour, in exact 8-bit steps so that a cleared pixel reads back exactly. */
 #define TR_SKY_R 204
@@ -103,7 +107,9 @@ struct tr_renderer {
     tr_buffer readback;
 
     tr_buffer vertices, indices;
-    tr_mesh sphere, cube;
+    /* The unit meshes by shape type (TB_GPU_SHAPE_*; index_count 0: none for that type),
+     * first in the vertex and index buffers. */
+    tr_mesh units[TR_SHAPE_TYPES];
 
     /* Hull and triangle-mesh shapes (render_hulls.c): a mesh per shape, and what the last
      * scan saw. */
@@ -112,6 +118,7 @@ struct tr_renderer {
     tr_shape_draw* mesh_draws;
     uint32_t mesh_draw_count;
     tb_shape_id* shape_ids;        /* per shape slot; index1 0: no live shape */
+    uint32_t shape_types;          /* bit 1 << TB_SHAPE_* of each type among those shapes */
     uint32_t shape_capacity;
     int hulls_scanned;
     uint32_t scan_slots, scan_live;
@@ -157,15 +164,29 @@ void tr_buffer_destroy(tr_renderer* r, tr_buffer* b);
 tb_result tr_meshes_create(tr_renderer* r);
 void tr_gpu_destroy(tr_renderer* r);
 
-/* render_mesh.c: unit meshes */
-uint32_t tr_sphere_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_count);
-uint32_t tr_cube_mesh(tr_vertex* vertices, uint32_t* indices, uint32_t* index_count);
-#define TR_SPHERE_SLICES 24
-#define TR_SPHERE_STACKS 16
-#define TR_SPHERE_VERTICES ((TR_SPHERE_SLICES + 1) * (TR_SPHERE_STACKS + 1))
-#define TR_SPHERE_INDICES (TR_SPHERE_SLICES * TR_SPHERE_STACKS * 6)
+/* render_mesh.c: unit meshes. Each writes its vertices and indices (from its own first
+ * vertex) and returns its vertex count. */
+typedef uint32_t tr_unit_mesh_fn(tr_vertex* vertices, uint32_t* indices, uint32_t* index_count);
+tr_unit_mesh_fn tr_sphere_mesh, tr_cube_mesh, tr_capsule_mesh, tr_cylinder_mesh, tr_cone_mesh;
+/// Unit-mesh vertex v of a shape of `type` (TB_GPU_SHAPE_*) sized by the shape's params
+/// (tb_gpu_shape.params), in its body frame, as mesh.vert sizes it.
+tr_vertex tr_sized_vertex(uint32_t type, const float params[4], const tr_vertex* v);
+#define TR_ROUND_SLICES 24
+#define TR_SPHERE_STACKS 16     /* even: the capsule splits the sphere at its equator */
+#define TR_SPHERE_VERTICES ((TR_ROUND_SLICES + 1) * (TR_SPHERE_STACKS + 1))
+#define TR_SPHERE_INDICES (TR_ROUND_SLICES * TR_SPHERE_STACKS * 6)
 #define TR_CUBE_VERTICES 24
 #define TR_CUBE_INDICES 36
+#define TR_CAPSULE_VERTICES ((TR_ROUND_SLICES + 1) * (TR_SPHERE_STACKS + 2))
+#define TR_CAPSULE_INDICES (TR_ROUND_SLICES * (TR_SPHERE_STACKS + 1) * 6)
+#define TR_CYLINDER_VERTICES (4 * TR_ROUND_SLICES + 6)  /* side 2 rings, caps a ring + centre */
+#define TR_CYLINDER_INDICES (12 * TR_ROUND_SLICES)
+#define TR_CONE_VERTICES (3 * TR_ROUND_SLICES + 4)      /* side 2 rings, base ring + centre */
+#define TR_CONE_INDICES (6 * TR_ROUND_SLICES)
+#define TR_UNIT_VERTICES (TR_SPHERE_VERTICES + TR_CUBE_VERTICES + TR_CAPSULE_VERTICES + \
+                          TR_CYLINDER_VERTICES + TR_CONE_VERTICES)
+#define TR_UNIT_INDICES (TR_SPHERE_INDICES + TR_CUBE_INDICES + TR_CAPSULE_INDICES + \
+                         TR_CYLINDER_INDICES + TR_CONE_INDICES)
 
 /* render_hulls.c: hull meshes, and the meshes of hull and triangle-mesh shapes */
 /// Triangles (counter-clockwise seen from outside) of the convex hull of `points`, as

@@ -54,6 +54,9 @@ vec3 body_color(uint slot, uint shape_type)
         if (shape_type == TB_GPU_SHAPE_BOX) return vec3(0.25, 0.50, 0.90);
         if (shape_type == TB_GPU_SHAPE_HULL) return vec3(0.35, 0.75, 0.30);
         if (shape_type == TB_GPU_SHAPE_COMPOUND) return vec3(0.65, 0.40, 0.80);
+        if (shape_type == TB_GPU_SHAPE_CAPSULE) return vec3(0.20, 0.70, 0.70);
+        if (shape_type == TB_GPU_SHAPE_CYLINDER) return vec3(0.80, 0.82, 0.20);
+        if (shape_type == TB_GPU_SHAPE_CONE) return vec3(0.90, 0.30, 0.75);
         return vec3(0.72, 0.72, 0.70);
     }
     return PALETTE[hash_u32(slot) & 7u];
