@@ -1,7 +1,7 @@
-"""The binding's reach over include/tumble.h, on lavapipe: every shape (triangle meshes
-included), single bodies' poses, velocities and impulses, gravity, destroy, contacts as a
-numpy structured array, stats, the log and the device. Scenes are a handful of bodies and
-tens of steps."""
+"""The binding's reach over include/tumble.h, on lavapipe: every shape (triangle meshes,
+capsules, cylinders and cones included), single bodies' poses, velocities and impulses,
+gravity, destroy, contacts as a numpy structured array, stats, the log and the device.
+Scenes are a handful of bodies and tens of steps."""
 import numpy as np
 import pytest
 
@@ -298,9 +298,108 @@ def test_compound_composes_mass_and_stands_on_its_children(make_world):
     body = world.add_body(dumbbell, (0, 0.3, 0), rotation=info["principal_axes"])
     world.step(DT, n=60)
     np.testing.assert_allclose(world.pose(body)[0], [0, 0.25, 0], atol=2e-3)
-    with pytest.raises(tumble.TumbleError, match="only spheres, boxes and hulls"):
+    with pytest.raises(tumble.TumbleError, match=r"only convex shapes \(spheres, boxes, "
+                                                 r"hulls, capsules, cylinders, cones\)"):
         world.compound([(world.plane((0, 1, 0)), (0, 0, 0))])
     with pytest.raises(tumble.TumbleError, match="is used by"):
         world.destroy(ball)
     with pytest.raises(TypeError, match="child 0 must be"):
         world.compound([ball])
+
+
+QUARTER_Z = (0, 0, np.sin(np.pi / 4), np.cos(np.pi / 4))         # y axis turned onto x
+
+
+def test_capsules_cylinders_and_cones_are_made_and_read_back(make_world):
+    world = make_world()
+    capsule = world.capsule(0.3, 0.5, density=500, friction=0.6, restitution=0.1)
+    cylinder = world.cylinder(np.float32(0.25), 1)                   # numpy and int sizes
+    cone = world.cone(0.2, np.float64(0.75))
+    ball = world.capsule(0.4, 0)                                     # half height 0: a sphere
+    assert [world.shape_type(s) for s in (capsule, cylinder, cone, ball)] == \
+        ["capsule", "cylinder", "cone", "capsule"]
+    assert world.round_size(capsule) == (np.float32(0.3), np.float32(0.5))
+    assert world.round_size(cylinder) == (0.25, 1.0)
+    assert world.round_size(cone) == (np.float32(0.2), 0.75)
+    assert world.round_size(ball) == (np.float32(0.4), 0.0)
+    assert all(isinstance(x, float) for x in world.round_size(cone))
+    mass, inertia = world.mass(world.add_body(capsule, (0, 5, 0)))
+    volume = np.pi * 0.3 ** 2 * 2 * 0.5 + 4 / 3 * np.pi * 0.3 ** 3
+    assert mass == pytest.approx(500 * volume, rel=1e-5)
+    assert inertia[0] == pytest.approx(inertia[2]) and inertia[1] < inertia[0]
+    mass, inertia = world.mass(world.add_body(cylinder, (5, 5, 0)))    # default density
+    assert mass == pytest.approx(1000 * np.pi * 0.25 ** 2 * 2, rel=1e-5)
+    assert inertia[1] == pytest.approx(mass * 0.25 ** 2 / 2, rel=1e-4)
+    mass, inertia = world.mass(world.add_body(cone, (10, 5, 0)))
+    assert mass == pytest.approx(1000 * np.pi * 0.2 ** 2 * 1.5 / 3, rel=1e-5)
+    assert inertia[1] == pytest.approx(mass * 0.3 * 0.2 ** 2, rel=1e-4)
+    assert world.mass(world.add_body(ball, (15, 5, 0)))[0] == pytest.approx(
+        1000 * 4 / 3 * np.pi * 0.4 ** 3, rel=1e-5)
+    with pytest.raises(tumble.TumbleError, match="is not a capsule, cylinder or cone") \
+            as caught:
+        world.round_size(world.sphere(1))
+    assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+    with pytest.raises(tumble.TumbleError, match="is not a capsule, cylinder or cone"):
+        world.round_size(world.box((1, 1, 1)))
+    with pytest.raises(TypeError, match="shape must be a tumble.Shape .*capsule"):
+        world.round_size("capsule")
+    world.destroy(world.body_ids())
+    world.destroy(cone)
+    with pytest.raises(tumble.TumbleError) as caught:
+        world.round_size(cone)
+    assert caught.value.code == tumble.lib.TB_ERROR_STALE_ID
+
+
+@pytest.mark.parametrize("make, size, rotation, height", [
+    ("capsule", (0.3, 0.5), (0, 0, 0, 1), 0.8),                  # standing on a cap
+    ("capsule", (0.3, 0.5), QUARTER_Z, 0.3),                     # lying on its side
+    ("cylinder", (0.3, 0.4), (0, 0, 0, 1), 0.4),                 # standing on its base
+    ("cone", (0.3, 0.4), (0, 0, 0, 1), 0.2),                     # base at -half_height / 2
+])
+def test_round_shapes_rest_on_a_plane(make_world, make, size, rotation, height):
+    world = make_world()
+    world.add_body(world.plane((0, 1, 0)), static=True)
+    body = world.add_body(getattr(world, make)(*size), (0.2, height, -0.1), rotation=rotation)
+    positions = []
+    for _ in range(90):
+        world.step(DT)
+        positions.append(world.pose(body)[0])
+    positions = np.array(positions)
+    assert np.all(np.abs(positions - [0.2, height, -0.1]) < 1e-3), positions
+    np.testing.assert_allclose(world.pose(body)[1], rotation, atol=1e-3)
+    contacts = world.contacts()
+    assert len(contacts) > 0
+    np.testing.assert_allclose(contacts["normal"], np.tile([0, 1, 0], (len(contacts), 1)),
+                               atol=1e-4)
+    mass, _ = world.mass(body)
+    assert contacts["normal_impulse"].sum() == pytest.approx(mass * 9.81 * DT, rel=0.02)
+
+
+def test_compound_with_capsule_children(make_world):
+    """A sled of two capsule runners lying along x, 1 m apart, and a box deck: it stands on
+    its runners."""
+    world = make_world()
+    world.add_body(world.plane((0, 1, 0)), static=True)
+    runner, deck = world.capsule(0.1, 0.6), world.box((0.5, 0.05, 0.6))
+    sled = world.compound([(runner, (0, 0, 0.5), QUARTER_Z), (runner, (0, 0, -0.5), QUARTER_Z),
+                           (deck, (0, 0.15, 0))])
+    assert world.shape_type(sled) == "compound"
+    info = world.compound_info(sled)
+    assert info["child_count"] == 3
+    runner_volume = np.pi * 0.1 ** 2 * 1.2 + 4 / 3 * np.pi * 0.1 ** 3
+    deck_volume = 1.0 * 0.1 * 1.2
+    assert info["volume"] == pytest.approx(2 * runner_volume + deck_volume, rel=1e-5)
+    centre = info["center_of_mass"]
+    np.testing.assert_allclose(centre, [0, 0.15 * deck_volume / info["volume"], 0], atol=1e-6)
+    children = world.compound_children(sled)
+    assert [c[0] for c in children] == [runner, runner, deck]
+    assert world.round_size(children[0][0]) == (np.float32(0.1), np.float32(0.6))
+    body = world.add_body(sled, centre + (0, 0.1, 0), rotation=info["principal_axes"])
+    world.step(DT, n=60)
+    np.testing.assert_allclose(world.pose(body)[0], centre + (0, 0.1, 0), atol=2e-3)
+    assert world.mass(body)[0] == pytest.approx(1000 * info["volume"], rel=1e-5)
+    with pytest.raises(tumble.TumbleError, match="is used by"):
+        world.destroy(runner)
+    cup = world.compound([(world.cylinder(0.3, 0.05), (0, 0, 0)),
+                          (world.cone(0.2, 0.3), (0, 0.3, 0))])
+    assert world.compound_info(cup)["child_count"] == 2

@@ -130,6 +130,74 @@ def test_heightfield_refuses_what_is_not_a_grid(world, heights, cell, holes, err
     assert world.stats()["shape_count"] == before
 
 
+ROUND = ["capsule", "cylinder", "cone"]
+
+
+@pytest.mark.parametrize("make", ROUND)
+@pytest.mark.parametrize("radius, half_height, error, words", [
+    ("big", 0.5, TypeError, "radius must be a real number, got 'big'"),
+    (0.5, "tall", TypeError, "half_height must be a real number, got 'tall'"),
+    (0.5 + 0j, 0.5, TypeError, r"radius must be a real number, got \(0.5\+0j\)"),
+    (0.5, 1j, TypeError, "half_height must be a real number, got 1j"),
+    (True, 0.5, TypeError, "radius must be a real number, got True"),
+    (None, 0.5, TypeError, "radius must be a real number, got None"),
+    ((0.5,), 0.5, TypeError, r"radius must be a real number, got \(0.5,\)"),
+    (np.array([0.5, 0.5]), 0.5, TypeError, "radius must be a real number"),
+    (b"1", 0.5, TypeError, "radius must be a real number"),
+    (0, 0.5, tumble.TumbleError, "not radius 0 and half height 0.5"),
+    (-1, 0.5, tumble.TumbleError, "not radius -1 and half height 0.5"),
+    (np.nan, 0.5, tumble.TumbleError, "not radius nan and half height 0.5"),
+    (np.inf, 0.5, tumble.TumbleError, "not radius inf and half height 0.5"),
+    (2e6, 0.5, tumble.TumbleError, r"not radius 2e\+06 and half height 0.5"),
+    (0.5, -1, tumble.TumbleError, "not radius 0.5 and half height -1"),
+    (0.5, np.nan, tumble.TumbleError, "not radius 0.5 and half height nan"),
+    (0.5, -np.inf, tumble.TumbleError, "not radius 0.5 and half height -inf"),
+])
+def test_round_shapes_refuse_sizes_that_are_not_positive_reals(world, make, radius,
+                                                               half_height, error, words):
+    before = world.stats()["shape_count"]
+    with pytest.raises(error, match=words) as caught:
+        getattr(world, make)(radius, half_height)
+    if error is tumble.TumbleError:
+        assert caught.value.code == tumble.lib.TB_ERROR_INVALID_ARGUMENT
+        assert str(caught.value).startswith(
+            "%s needs a finite radius in (0, 1e6] and a finite half height in " % make)
+        assert caught.value.result == "invalid argument"
+    assert world.stats()["shape_count"] == before
+
+
+@pytest.mark.parametrize("make", ROUND)
+def test_round_shapes_half_height_zero_only_for_a_capsule(world, make):
+    before = world.stats()["shape_count"]
+    if make == "capsule":
+        world.destroy(world.capsule(0.5, 0))
+    else:
+        words = (r"%s needs a finite radius in \(0, 1e6\] and a finite half height in "
+                 r"\(0, 1e6\], not radius 0.5 and half height 0$" % make)
+        with pytest.raises(tumble.TumbleError, match=words):
+            getattr(world, make)(0.5, 0)
+    assert world.stats()["shape_count"] == before
+
+
+@pytest.mark.parametrize("make", ROUND)
+def test_round_shapes_take_materials_as_sphere_and_box_do(world, make):
+    before = world.stats()["shape_count"]
+    with pytest.raises(TypeError, match="friction must be a real number, got 'high'"):
+        getattr(world, make)(0.5, 0.5, friction="high")
+    with pytest.raises(TypeError, match="density must be a real number"):
+        getattr(world, make)(0.5, 0.5, density=1j)
+    with pytest.raises(TypeError, match="restitution must be a real number"):
+        getattr(world, make)(0.5, 0.5, restitution=False)
+    with pytest.raises(tumble.TumbleError, match="density must be finite and >= 0, not -1"):
+        getattr(world, make)(0.5, 0.5, density=-1)
+    with pytest.raises(tumble.TumbleError, match=r"restitution must be in \[0, 1\], not 2"):
+        getattr(world, make)(0.5, 0.5, restitution=2)
+    with pytest.raises(TypeError, match="unexpected keyword argument 'mass'"):
+        getattr(world, make)(0.5, 0.5, mass=1)
+    assert world.stats()["shape_count"] == before
+    world.destroy(getattr(world, make)(0.5, 0.5, density=0, friction=0, restitution=1))
+
+
 def test_step_refuses_bad_counts_and_times(world):
     with pytest.raises(ValueError, match=r"n must be a non-negative integer \(the number of "
                                          r"steps\) below 2\^32, got -1"):

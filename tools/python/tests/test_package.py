@@ -109,7 +109,8 @@ def test_the_readme_example_is_examples_pile_py():
     assert blocks[0] == "".join(lines[1:])
 
 
-@pytest.mark.parametrize("heading", ["## Triangle meshes", "## Compounds"])
+@pytest.mark.parametrize("heading", ["## Triangle meshes", "## Capsules, cylinders and cones",
+                                     "## Compounds"])
 def test_the_readme_shape_examples_print_what_they_show(heading):
     with open(README) as f:
         text = f.read()

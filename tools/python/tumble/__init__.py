@@ -55,7 +55,8 @@ BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
                 lib.TB_SHAPE_PLANE: "plane", lib.TB_SHAPE_HULL: "hull",
                 lib.TB_SHAPE_MESH: "mesh", lib.TB_SHAPE_HEIGHTFIELD: "heightfield",
-                lib.TB_SHAPE_COMPOUND: "compound"}
+                lib.TB_SHAPE_COMPOUND: "compound", lib.TB_SHAPE_CAPSULE: "capsule",
+                lib.TB_SHAPE_CYLINDER: "cylinder", lib.TB_SHAPE_CONE: "cone"}
 _LOG_LEVELS = {lib.TB_LOG_DEBUG: "debug", lib.TB_LOG_INFO: "info",
                lib.TB_LOG_WARNING: "warning", lib.TB_LOG_ERROR: "error"}
 
@@ -230,8 +231,9 @@ class _Id:
 
 
 class Shape(_Id):
-    """A shape's id (World.sphere, box, plane, hull, mesh, heightfield). Any number of bodies
-    may use it; a plane, a mesh or a heightfield, static ones only."""
+    """A shape's id (World.sphere, box, capsule, cylinder, cone, plane, hull, mesh,
+    heightfield, compound). Any number of bodies may use it; a plane, a mesh or a
+    heightfield, static ones only."""
     __slots__ = ()
     _ctype = "tb_shape_id"
 
@@ -306,8 +308,8 @@ def _as_body(name, value):
 
 def _as_shape(name, value):
     if not isinstance(value, Shape):
-        raise TypeError("%s must be a tumble.Shape (from World.sphere, box, plane, hull or "
-                        "mesh), got %r" % (name, value))
+        raise TypeError("%s must be a tumble.Shape (from World.sphere, box, capsule, "
+                        "cylinder, cone, plane, hull or mesh), got %r" % (name, value))
     return value
 
 
@@ -525,6 +527,31 @@ class World:
         return self._shape(lambda w, d, o: lib.tb_shape_create_box(w, d, h, o),
                            density, friction, restitution)
 
+    def _round(self, create, radius, half_height, density, friction, restitution):
+        r, h = _real("radius", radius), _real("half_height", half_height)
+        return self._shape(lambda w, d, o: create(w, d, r, h, o), density, friction,
+                           restitution)
+
+    def capsule(self, radius, half_height, density=None, friction=None, restitution=None):
+        """A capsule along the body's y axis: the points within `radius` m of the segment
+        from (0, -half_height, 0) to (0, half_height, 0) (half_height 0: a sphere). Its
+        origin is its centre of mass."""
+        return self._round(lib.tb_shape_create_capsule, radius, half_height, density,
+                           friction, restitution)
+
+    def cylinder(self, radius, half_height, density=None, friction=None, restitution=None):
+        """A cylinder of `radius` m along the body's y axis, from y = -half_height to
+        y = half_height (half_height > 0). Its origin is its centre of mass."""
+        return self._round(lib.tb_shape_create_cylinder, radius, half_height, density,
+                           friction, restitution)
+
+    def cone(self, radius, half_height, density=None, friction=None, restitution=None):
+        """A cone of base `radius` m and height 2 half_height along the body's y axis. Its
+        origin is its centre of mass: the base circle lies at y = -half_height / 2 and the
+        apex at y = 3 half_height / 2."""
+        return self._round(lib.tb_shape_create_cone, radius, half_height, density,
+                           friction, restitution)
+
     def plane(self, normal, offset=0.0, friction=None, restitution=None):
         """The half-space dot(normal, p) <= offset, for static bodies (the ground)."""
         n, off = _vec3("normal", normal), _real("offset", offset)
@@ -630,11 +657,12 @@ class World:
         return vertices, triangles
 
     def compound(self, children):
-        """A compound of 1 to 64 convex children (spheres, boxes, hulls): a sequence of
-        (shape, position) or (shape, position, rotation), position 3 numbers (m) and
-        rotation a unit quaternion (x, y, z, w), in the frame the compound is built in. Each
-        child keeps its density, friction and restitution. The body frame is the composed
-        principal frame (origin at the centre of mass): compound_info says where it lies."""
+        """A compound of 1 to 64 convex children (spheres, boxes, hulls, capsules, cylinders,
+        cones): a sequence of (shape, position) or (shape, position, rotation), position 3
+        numbers (m) and rotation a unit quaternion (x, y, z, w), in the frame the compound is
+        built in. Each child keeps its density, friction and restitution. The body frame is
+        the composed principal frame (origin at the centre of mass): compound_info says
+        where it lies."""
         if isinstance(children, (str, bytes)) or not hasattr(children, "__len__"):
             raise TypeError("children must be a sequence of (shape, position[, rotation])")
         c = ffi.new("tb_compound_child[]", max(len(children), 1))
@@ -691,8 +719,16 @@ class World:
                                                       _as_shape("shape", shape)._c(), out))
         return np.array([out.x, out.y, out.z], dtype=np.float32)
 
+    def round_size(self, shape):
+        """A capsule's, cylinder's or cone's (radius, half_height), m, as created."""
+        r, h = ffi.new("float*"), ffi.new("float*")
+        self._check(lib.tb_shape_get_round_size(self._handle(),
+                                                _as_shape("shape", shape)._c(), r, h))
+        return r[0], h[0]
+
     def shape_type(self, shape):
-        """"sphere", "box", "plane", "hull", "mesh", "heightfield" or "compound"."""
+        """"sphere", "box", "capsule", "cylinder", "cone", "plane", "hull", "mesh",
+        "heightfield" or "compound"."""
         out = ffi.new("tb_shape_type*")
         self._check(lib.tb_shape_get_type(self._handle(), _as_shape("shape", shape)._c(), out))
         return _SHAPE_TYPES[out[0]]
