@@ -486,6 +486,47 @@ TB_API tb_result tb_shape_get_type(const tb_world* world, tb_shape_id shape, tb_
 TB_API uint32_t tb_world_shape_ids(const tb_world* world, tb_shape_id* out, uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------
+ * Distance queries
+ */
+
+/// Two convex shapes (spheres, boxes, hulls, capsules, cylinders, cones) of the world, each
+/// placed by a pose of its body frame (no body is needed).
+typedef struct tb_distance_query {
+    tb_shape_id a, b;
+    tb_vec3 position_a;
+    tb_quat rotation_a;     ///< unit within 1e-3 (then normalised)
+    tb_vec3 position_b;
+    tb_quat rotation_b;
+} tb_distance_query;
+
+typedef enum tb_distance_status {
+    TB_DISTANCE_SEPARATED = 0,   ///< apart, or touching through a sphere's or capsule's radius
+    TB_DISTANCE_OVERLAP = 1,     ///< the shapes' cores overlap: distance is minus EPA's depth
+    TB_DISTANCE_LIMIT = 2,       ///< GJK stopped at its iteration limit with its best answer
+    TB_DISTANCE_FAILED = 3,      ///< overlapping, and EPA found no depth (degenerate shapes)
+    TB_DISTANCE_STATUS_FORCE_32 = 0x7fffffff
+} tb_distance_status;
+
+typedef struct tb_distance_result {
+    float distance;          ///< m between the surfaces; negative: the depth of overlap
+    tb_vec3 normal;          ///< unit, from a towards b (moving b along it parts them)
+    tb_vec3 point_a;         ///< world point on a's surface: closest to b, or deepest in b
+    tb_vec3 point_b;         ///< world point on b's surface
+    uint32_t status;         ///< tb_distance_status
+    uint32_t iterations;     ///< GJK iterations
+} tb_distance_result;
+
+/// Distances between `count` pairs of posed convex shapes, computed on the GPU (one thread a
+/// query: GJK with the signed-volume sub-algorithm on the shapes' cores, EPA where the cores
+/// overlap), written to out[0..count). Runs between steps and changes nothing in the world.
+/// Fails with TB_ERROR_INVALID_ARGUMENT (nothing run) on NULL arrays with count > 0, a
+/// shape that is not convex, a position that is not finite, or a rotation that is not a unit
+/// quaternion; with TB_ERROR_INVALID_ID or TB_ERROR_STALE_ID on a shape id that names no
+/// live shape. The error names the first bad query.
+TB_API tb_result tb_world_query_distances(tb_world* world, const tb_distance_query* queries,
+                                          uint32_t count, tb_distance_result* out);
+
+/* ---------------------------------------------------------------------------------------
  * Bodies
  */
 

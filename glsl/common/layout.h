@@ -608,6 +608,26 @@ TB_STRUCT(tb_gpu_compound_child) {
  * a compound pair none of whose parts touch, kept for isap (its manifold is empty). */
 #define TB_PAIR_UNSPLIT           TB_U(0xffffffff)
 
+/* query/distance (tb_world_query_distances): the distance between two convex shapes placed
+ * by poses, GJK on their cores and EPA where the cores overlap (glsl/narrowphase/gjk.glsl,
+ * epa.glsl). One thread per query. */
+TB_STRUCT(tb_gpu_distance_query) {
+    TB_VEC4 position_a;       /* xyz shape a's origin, w its shape index (uint bits) */
+    TB_VEC4 rotation_a;       /* unit quaternion xyzw */
+    TB_VEC4 position_b;       /* as for a */
+    TB_VEC4 rotation_b;
+};
+TB_STRUCT(tb_gpu_distance_result) {
+    TB_VEC4 point_a;          /* xyz the closest (or deepest) point on a, w the distance
+                                 (negative: the depth of overlap) */
+    TB_VEC4 point_b;          /* xyz on b, w the status (uint bits: TB_DISTANCE_* of tumble.h) */
+    TB_VEC4 normal;           /* xyz unit, from a to b; w the GJK iterations (uint bits) */
+};
+TB_STRUCT(tb_gpu_distance_push) {
+    TB_UVEC4 arrays;          /* xy address of the queries, zw of the results */
+    TB_UVEC4 range;           /* x the first query of this dispatch, y the query count */
+};
+
 /* A shape as the GPU sees it. */
 TB_STRUCT(tb_gpu_shape) {
     TB_VEC4 aabb_center;    /* xyz centre of the local AABB, body frame */

@@ -32,18 +32,6 @@ np_convex np_convex_of(np_body b)
     return c;
 }
 
-np_convex np_convex_of_triangle(np_body mesh, np_triangle t)
-{
-    np_convex c;
-    c.body = mesh;
-    c.body.type = NP_SHAPE_TRIANGLE;
-    c.v0 = t.v0;
-    c.v1 = t.v1;
-    c.v2 = t.v2;
-    c.radius = 0.0;
-    return c;
-}
-
 // The direction of xz within the xz plane scaled to length r, or (r, 0) when xz is (nearly)
 // zero: a rim point of a disc about the y axis.
 vec2 np_rim(vec2 xz, float r)
@@ -85,6 +73,17 @@ vec3 np_core_support(np_convex c, vec3 d)
         return s0 >= s1 && s0 >= s2 ? c.v0 : (s1 >= s2 ? c.v1 : c.v2);
     }
     return c.body.pos + c.body.rot * np_core_support_local(c, transpose(c.body.rot) * d);
+}
+
+// The same shape moved by -o: GJK and EPA work about a point of the pair (the first shape's
+// centre), so float keeps its digits for the pair's size rather than its place in the world.
+np_convex np_convex_moved(np_convex c, vec3 o)
+{
+    c.body.pos -= o;
+    c.v0 -= o;
+    c.v1 -= o;
+    c.v2 -= o;
+    return c;
 }
 
 // A point deep inside the core: where GJK starts.

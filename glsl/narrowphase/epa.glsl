@@ -18,7 +18,7 @@
 #define NP_EPA_ITERATIONS 32u
 
 struct np_epa_result {
-    bool found;
+    bool found;     // a depth was found; else, when the normal is not zero, the cores touch
     vec3 normal;    // from A to B (the Minkowski difference's outward normal)
     float depth;    // of the cores
     vec3 pa, pb;    // witness points on the cores
@@ -167,7 +167,7 @@ np_epa_result np_epa(np_convex A, np_convex B, np_simplex s)
 {
     np_epa_result r;
     r.found = false;
-    r.normal = vec3(0.0, 1.0, 0.0);
+    r.normal = vec3(0.0);
     r.depth = 0.0;
     r.pa = r.pb = vec3(0.0);
     if (!np_epa_start(A, B, s)) return r;
@@ -185,7 +185,13 @@ np_epa_result np_epa(np_convex A, np_convex B, np_simplex s)
         if (next == NP_NONE) break;
         best = next;
     }
-    return best == NP_NONE ? r : np_epa_answer(best);
+    if (best == NP_NONE) return r;
+    // A polytope whose nearest face does not hold the origin in front of it (cores that only
+    // touch, within float noise of each other) has no depth to give: not found, but its
+    // nearest face's normal is still the touching direction.
+    r = np_epa_answer(best);
+    r.found = np_epa_plane[best].w > 1.0e-6 * size;
+    return r;
 }
 
 #endif

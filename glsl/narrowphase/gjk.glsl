@@ -19,6 +19,7 @@
 #define NP_GJK_SEPARATED 0u
 #define NP_GJK_OVERLAP 1u
 #define NP_GJK_LIMIT 2u
+#define NP_GJK_STALLS 3u
 
 struct np_simplex {
     vec3 w[4];      // Minkowski points a - b
@@ -187,6 +188,9 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
     if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
     r.status = NP_GJK_LIMIT;
     float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
+    np_simplex best = s;
+    vec3 best_v = vec3(3.0e18);
+    uint stalls = 0u;
     uint it;
     for (it = 0u; it < NP_GJK_ITERATIONS; it++) {
         vec3 a = np_core_support(A, -v);
@@ -195,7 +199,7 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
         scale = max(scale, dot(w, w));
         float vv = dot(v, v);
         // No closer than v along v: v is the distance (relative tolerance of float).
-        if (s.n > 0u && vv - dot(v, w) <= 1.0e-5 * vv) {
+        if (s.n > 0u && vv - dot(v, w) <= 1.0e-6 * vv) {
             r.status = NP_GJK_SEPARATED;
             break;
         }
@@ -212,20 +216,32 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
         s.n++;
         s = np_sv_reduce(s);
         vec3 next = np_simplex_point(s);
-        if (s.n == 4u || dot(next, next) <= 1.0e-10 * scale) {
+        if (s.n == 4u || dot(next, next) <= 1.0e-14 * scale) {
             r.status = NP_GJK_OVERLAP;
             v = next;
             it++;
             break;
         }
-        // The distance never grows; a step that does not shrink it is float noise.
-        if (dot(next, next) >= vv && before.n > 0u) {
-            s = before;
-            r.status = NP_GJK_SEPARATED;
-            break;
+        // The distance never grows in exact arithmetic: a step that does not shrink it is
+        // float noise in the sub-algorithm. The best simplex so far is kept; the search goes
+        // on from the new one, and ends after NP_GJK_STALLS such steps in a row.
+        if (dot(next, next) >= dot(best_v, best_v) && before.n > 0u) {
+            if (++stalls >= NP_GJK_STALLS) {
+                r.status = NP_GJK_SEPARATED;
+                break;
+            }
+        } else {
+            stalls = 0u;
+            best = s;
+            best_v = next;
         }
         v = next;
     }
+    if (r.status != NP_GJK_OVERLAP && best.n > 0u) s = best;
+    // Stopped with the origin within float noise of the simplex (no support point is new,
+    // or none gets closer): the cores touch or overlap, and EPA decides which.
+    vec3 last = np_simplex_point(s);
+    if (r.status != NP_GJK_OVERLAP && dot(last, last) <= 1.0e-10 * scale) r.status = NP_GJK_OVERLAP;
     r.iterations = it;
     r.simplex = s;
     r.pa = vec3(0.0);

@@ -168,6 +168,19 @@ np_feature np_triangle_feature(np_convex c, vec3 d)
     return f;
 }
 
+// A mesh triangle as a convex shape of its own.
+np_convex np_convex_of_triangle(np_body mesh, np_triangle t)
+{
+    np_convex c;
+    c.body = mesh;
+    c.body.type = NP_SHAPE_TRIANGLE;
+    c.v0 = t.v0;
+    c.v1 = t.v1;
+    c.v2 = t.v2;
+    c.radius = 0.0;
+    return c;
+}
+
 // The feature shape c presents along the unit direction d, on its surface.
 np_feature np_feature_of(np_convex c, vec3 d)
 {
@@ -372,9 +385,11 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
 
 // Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
 // overlap. False when they are farther apart than the margin (or EPA found nothing).
-bool np_round_normal(np_convex A, np_convex B, float margin, out vec3 n, out vec3 pa,
-                     out vec3 pb)
+bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
+                     out vec3 pa, out vec3 pb)
 {
+    vec3 o = np_core_centre(world_a);
+    np_convex A = np_convex_moved(world_a, o), B = np_convex_moved(world_b, o);
     np_gjk_result g = np_gjk(A, B);
     n = vec3(0.0, 1.0, 0.0);
     pa = g.pa;
@@ -384,13 +399,17 @@ bool np_round_normal(np_convex A, np_convex B, float margin, out vec3 n, out vec
         n = (g.pb - g.pa) / g.distance;
     } else {
         np_epa_result e = np_epa(A, B, g.simplex);
-        if (!e.found) return false;
-        n = e.normal;
-        pa = e.pa;
-        pb = e.pb;
+        // Cores that only touch (no depth to find): along EPA's nearest face, or else
+        // GJK's last direction (its length is float noise, its direction too).
+        vec3 gap = g.pb - g.pa;
+        bool along_gap = !e.found && e.normal == vec3(0.0);
+        if (along_gap && dot(gap, gap) == 0.0) return false;
+        n = along_gap ? normalize(gap) : e.normal;
+        pa = along_gap ? g.pa : e.pa;
+        pb = along_gap ? g.pb : e.pb;
     }
-    pa += n * A.radius;
-    pb -= n * B.radius;
+    pa += o + n * A.radius;
+    pb += o - n * B.radius;
     return true;
 }
 

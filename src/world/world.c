@@ -124,6 +124,7 @@ void tb_world_free(tb_world* w)
         for (uint32_t i = 0; i < w->shape_slots.used; i++)
             tb_buffer_destroy(&w->memory, &w->shapes[i].mesh_buffer);
         tb_narrowphase_destroy(&w->narrowphase);
+        tb_pipeline_destroy(&w->pipelines, w->distance_query);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
         tb_transfer_destroy(&w->transfer);
         tb_pipelines_destroy(&w->pipelines);

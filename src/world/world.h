@@ -85,6 +85,8 @@ struct tb_world {
     tb_gpu_kit kit;                        ///< the above, as the stages borrow them
     tb_sim sim;
     VkPipeline step_begin, step_end;       ///< step/begin, step/end
+    VkPipeline distance_query;             ///< query/distance, made by the first query
+    VkCommandBuffer query_cb;              ///< the distance queries' submissions
     tb_broadphase broadphase_kind;         ///< never TB_BROADPHASE_DEFAULT
     const tb_broadphase_ops* broadphase;
     tb_broadphase_ctx bp;                  ///< what the broadphase sees
@@ -144,6 +146,11 @@ static inline uint32_t tb_world_substeps(const tb_world* w)
 {
     return w->block_solver ? 1 : w->substeps;
 }
+
+/* query.c */
+/// Runs `count` distance queries on the GPU (shapes checked by the caller).
+tb_result tb_world_distances(tb_world* w, const tb_gpu_distance_query* in, uint32_t count,
+                             tb_gpu_distance_result* out);
 
 /* world.c */
 /// A world for a checked def and a resolved broadphase, with extra device options

@@ -1,0 +1,73 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+// query/distance: one thread per query of tb_world_query_distances. The two convex shapes,
+// placed by the query's poses, are measured by GJK on their cores (convex.glsl); where the
+// cores overlap, EPA gives the depth. The distance is between the surfaces (the cores' less
+// both radii): negative is the depth of overlap, the normal runs from a to b, and the points
+// are the closest (apart) or deepest (overlapping) points of each surface.
+#include "world.glsl"
+#include "quat.glsl"
+#include "../narrowphase/manifold.glsl"
+#include "../narrowphase/hull.glsl"
+#include "../narrowphase/convex.glsl"
+#include "../narrowphase/gjk.glsl"
+#include "../narrowphase/epa.glsl"
+
+layout(push_constant) uniform Push { tb_gpu_distance_push push; };
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Queries {
+    tb_gpu_distance_query q[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 16) writeonly buffer Results {
+    tb_gpu_distance_result r[];
+};
+
+np_body posed(vec4 position, vec4 rotation)
+{
+    uint s = floatBitsToUint(position.w);
+    np_body b;
+    b.pos = position.xyz;
+    b.rot = quat_to_mat3(rotation);
+    b.params = shapes[s].params;
+    b.material = shapes[s].material.xy;
+    b.type = shapes[s].info.x;
+    b.shape = s;
+    return b;
+}
+
+void main()
+{
+    uint i = push.range.x + gl_GlobalInvocationID.x;
+    if (i >= push.range.y) return;
+    tb_gpu_distance_query q = Queries(push.arrays.xy).q[i];
+    // About a's centre: float keeps its digits for the pair, not for its place.
+    vec3 o = q.position_a.xyz;
+    np_convex A = np_convex_moved(np_convex_of(posed(q.position_a, q.rotation_a)), o);
+    np_convex B = np_convex_moved(np_convex_of(posed(q.position_b, q.rotation_b)), o);
+    np_gjk_result g = np_gjk(A, B);
+    vec3 n = vec3(0.0, 1.0, 0.0), pa = g.pa, pb = g.pb;
+    float distance;
+    uint status = g.status;
+    if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
+        n = (g.pb - g.pa) / g.distance;
+        distance = g.distance;
+    } else {
+        np_epa_result e = np_epa(A, B, g.simplex);
+        // Cores that only touch: EPA's nearest face, or else GJK's points, their distance
+        // and direction.
+        vec3 gap = g.pb - g.pa;
+        bool along_gap = !e.found && e.normal == vec3(0.0) && dot(gap, gap) > 0.0;
+        status = e.found ? NP_GJK_OVERLAP
+                         : (along_gap || e.normal != vec3(0.0) ? NP_GJK_SEPARATED : 3u);
+        n = along_gap ? normalize(gap) : (e.normal != vec3(0.0) ? e.normal : n);
+        pa = along_gap ? g.pa : e.pa;
+        pb = along_gap ? g.pb : e.pb;
+        distance = e.found ? -e.depth : length(gap);
+    }
+    distance -= A.radius + B.radius;
+    pa += o + n * A.radius;
+    pb += o - n * B.radius;
+    Results(push.arrays.zw).r[i] = tb_gpu_distance_result(
+        vec4(pa, distance), vec4(pb, uintBitsToFloat(status)), vec4(n, uintBitsToFloat(g.iterations)));
+}
