@@ -100,6 +100,9 @@ tb_result pile_pour_turned(tb_world* world, const pile_layout* layout, const tb_
 /* compounds.c */
 tb_result compounds_build(tb_world* world, const scene_params* params, scene_instance** out);
 
+/* shapes.c */
+tb_result shapes_build(tb_world* world, const scene_params* params, scene_instance** out);
+
 /* terrain.c */
 tb_result terrain_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result heightfield_build(tb_world* world, const scene_params* params, scene_instance** out);

@@ -254,6 +254,10 @@ static const scene scenes[] = {
                    "clubs of a hull and a sphere) dropped into a walled box; checks nan, "
                    "escaped, resting, max_penetration", 1.0f / 60.0f, 10000, 600,
       compounds_build, pile_check, instance_free },
+    { "shapes", "N capsules, cylinders and cones (a quarter each, two sizes of each) and "
+                "boxes and hulls (an eighth each) at random rotations dropped into a walled "
+                "box; checks nan, escaped, resting, max_penetration", 1.0f / 60.0f, 10000, 600,
+      shapes_build, pile_check, instance_free },
     { "terrain", "N boxes and hulls (half each) dropped in 4 layers onto a bowl of rolling "
                  "hills, a static triangle mesh of 131,072 triangles; checks nan, escaped "
                  "(through or off it), resting, max_penetration", 1.0f / 60.0f, 10000, 600,
