@@ -52,7 +52,7 @@ TEST_SRC   := $(sort $(wildcard tests/test_*.c))
 TEST_CXX   := $(sort $(wildcard tests/test_*.cpp))
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%) $(TEST_CXX:tests/%.cpp=$(BUILD)/tests/%)
 CXX        ?= g++
-TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims
+TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/bench-distance
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
@@ -222,6 +222,11 @@ $(BUILD)/bench: tools/bench/bench.c $(TOOL_DEPS)
 $(BUILD)/bench-prims: tools/bench/prims.c $(BUILD)/libtumble.a
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -o $@ tools/bench/prims.c $(BUILD)/libtumble.a $(LIBS)
+
+# Distance queries per second (tb_world_query_distances), through the public API.
+$(BUILD)/bench-distance: tools/bench/distance.c $(BUILD)/libtumble.a
+	$(call say,LD,$@)
+	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/bench/distance.c $(BUILD)/libtumble.a $(LIBS) -lm
 
 $(BUILD)/tumble-run: tools/run/run.c $(TOOL_DEPS)
 	$(call say,LD,$@)
