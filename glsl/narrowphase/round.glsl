@@ -29,18 +29,24 @@
 #define NP_LINE_SINE 0.17       // sin 10 degrees: a side within it of square to the normal
 #define NP_FACE_COSINE 0.9      // cos 25 degrees: a face within it of the normal
 
+// A feature's corners live in np_feature_v[slot] (a private array each of the two shapes
+// fills), not in the struct: structs of arrays passed by value cost registers, and one
+// driver failed to build the kernel with them.
+vec3 np_feature_v[2][NP_FEATURE_MAX];
+
 struct np_feature {
-    vec3 v[NP_FEATURE_MAX];
+    uint slot;      // which row of np_feature_v holds the corners
     uint count;     // 1 a point, 2 a line, 3 or more a face polygon
     vec3 normal;    // a face's outward unit normal
     uint id;        // which feature of the shape (feature keys)
 };
 
-np_feature np_feature_points(vec3 p, vec3 q, uint count, uint id)
+np_feature np_feature_points(uint slot, vec3 p, vec3 q, uint count, uint id)
 {
     np_feature f;
-    f.v[0] = p;
-    f.v[1] = q;
+    f.slot = slot;
+    np_feature_v[f.slot][0] = p;
+    np_feature_v[f.slot][1] = q;
     f.count = count;
     f.normal = vec3(0.0);
     f.id = id;
@@ -49,13 +55,14 @@ np_feature np_feature_points(vec3 p, vec3 q, uint count, uint id)
 
 // A circle of radius r about centre c, facing `normal`, as an octagon whose first corner
 // lies in direction `start` (unit, square to normal).
-np_feature np_feature_disc(vec3 c, vec3 normal, vec3 start, float r, uint id)
+np_feature np_feature_disc(uint slot, vec3 c, vec3 normal, vec3 start, float r, uint id)
 {
     np_feature f;
+    f.slot = slot;
     vec3 e2 = cross(normal, start);
     for (uint k = 0u; k < NP_DISC_CORNERS; k++) {
         float angle = 6.28318530718 * float(k) / float(NP_DISC_CORNERS);
-        f.v[k] = c + r * (cos(angle) * start + sin(angle) * e2);
+        np_feature_v[f.slot][k] = c + r * (cos(angle) * start + sin(angle) * e2);
     }
     f.count = NP_DISC_CORNERS;
     f.normal = normal;
@@ -72,31 +79,31 @@ vec3 np_radial(vec3 d, vec3 u, vec3 fallback)
     return len > 0.05 ? p / len : fallback;
 }
 
-np_feature np_capsule_feature(np_convex c, vec3 d)
+np_feature np_capsule_feature(np_convex c, vec3 d, uint slot)
 {
     vec3 u = c.body.rot[1];
     float cu = dot(u, d), h = c.body.params.y;
     vec3 skin = c.radius * d;
     if (abs(cu) < NP_LINE_SINE && h > 0.0)
-        return np_feature_points(c.body.pos - u * h + skin, c.body.pos + u * h + skin, 2u, 1u);
+        return np_feature_points(slot, c.body.pos - u * h + skin, c.body.pos + u * h + skin, 2u, 1u);
     float side = cu >= 0.0 ? 1.0 : -1.0;
-    return np_feature_points(c.body.pos + side * h * u + skin, vec3(0.0), 1u, cu >= 0.0 ? 2u : 3u);
+    return np_feature_points(slot, c.body.pos + side * h * u + skin, vec3(0.0), 1u, cu >= 0.0 ? 2u : 3u);
 }
 
-np_feature np_cylinder_feature(np_convex c, vec3 d)
+np_feature np_cylinder_feature(np_convex c, vec3 d, uint slot)
 {
     vec3 u = c.body.rot[1];
     float cu = dot(u, d), r = c.body.params.x, h = c.body.params.y;
     vec3 radial = np_radial(d, u, c.body.rot[0]);
     if (abs(cu) < NP_LINE_SINE) {
         vec3 rim = c.body.pos + radial * r;
-        return np_feature_points(rim - u * h, rim + u * h, 2u, 1u);
+        return np_feature_points(slot, rim - u * h, rim + u * h, 2u, 1u);
     }
     vec3 normal = cu >= 0.0 ? u : -u;
-    return np_feature_disc(c.body.pos + normal * h, normal, radial, r, cu >= 0.0 ? 2u : 3u);
+    return np_feature_disc(slot, c.body.pos + normal * h, normal, radial, r, cu >= 0.0 ? 2u : 3u);
 }
 
-np_feature np_cone_feature(np_convex c, vec3 d)
+np_feature np_cone_feature(np_convex c, vec3 d, uint slot)
 {
     vec3 u = c.body.rot[1];
     float r = c.body.params.x, h = c.body.params.y;
@@ -104,25 +111,26 @@ np_feature np_cone_feature(np_convex c, vec3 d)
     vec3 apex = c.body.pos + 1.5 * h * u, base = c.body.pos - 0.5 * h * u;
     vec3 rim = base + radial * r;
     vec3 slant = normalize(2.0 * h * radial + r * u);   // the side's outward normal there
-    if (dot(d, slant) > 0.985) return np_feature_points(apex, rim, 2u, 1u);
-    if (dot(d, apex) >= dot(d, rim)) return np_feature_points(apex, vec3(0.0), 1u, 4u);
-    return np_feature_disc(base, -u, radial, r, 2u);
+    if (dot(d, slant) > 0.985) return np_feature_points(slot, apex, rim, 2u, 1u);
+    if (dot(d, apex) >= dot(d, rim)) return np_feature_points(slot, apex, vec3(0.0), 1u, 4u);
+    return np_feature_disc(slot, base, -u, radial, r, 2u);
 }
 
-np_feature np_box_feature(np_convex c, vec3 d)
+np_feature np_box_feature(np_convex c, vec3 d, uint slot)
 {
     vec3 l = transpose(c.body.rot) * d, al = abs(l), h = c.body.params.xyz;
     uint k = al.x >= al.y && al.x >= al.z ? 0u : (al.y >= al.z ? 1u : 2u);
     uint i = (k + 1u) % 3u, j = (k + 2u) % 3u;
     float side = l[k] >= 0.0 ? 1.0 : -1.0;
     np_feature f;
+    f.slot = slot;
     const vec2 corners[4] = vec2[4](vec2(1, 1), vec2(-1, 1), vec2(-1, -1), vec2(1, -1));
     for (uint m = 0u; m < 4u; m++) {
         vec3 x;
         x[k] = side * h[k];
         x[i] = corners[m].x * h[i];
         x[j] = corners[m].y * h[j];
-        f.v[m] = c.body.pos + c.body.rot * x;
+        np_feature_v[f.slot][m] = c.body.pos + c.body.rot * x;
     }
     vec3 n = vec3(0.0);
     n[k] = side;
@@ -132,7 +140,7 @@ np_feature np_box_feature(np_convex c, vec3 d)
     return f;
 }
 
-np_feature np_hull_feature(np_convex c, vec3 d)
+np_feature np_hull_feature(np_convex c, vec3 d, uint slot)
 {
     np_hull h = np_hull_of(c.body);
     vec3 l = transpose(c.body.rot) * d;
@@ -147,20 +155,22 @@ np_feature np_hull_feature(np_convex c, vec3 d)
     }
     uvec2 face = np_hull_face(h, best);
     np_feature f;
+    f.slot = slot;
     for (uint k = 0u; k < face.y; k++)
-        f.v[k] = c.body.pos + c.body.rot * np_hull_face_vertex(h, face, k);
+        np_feature_v[f.slot][k] = c.body.pos + c.body.rot * np_hull_face_vertex(h, face, k);
     f.count = face.y;
     f.normal = c.body.rot * np_hull_plane(h, best).xyz;
     f.id = best;
     return f;
 }
 
-np_feature np_triangle_feature(np_convex c, vec3 d)
+np_feature np_triangle_feature(np_convex c, vec3 d, uint slot)
 {
     np_feature f;
-    f.v[0] = c.v0;
-    f.v[1] = c.v1;
-    f.v[2] = c.v2;
+    f.slot = slot;
+    np_feature_v[f.slot][0] = c.v0;
+    np_feature_v[f.slot][1] = c.v1;
+    np_feature_v[f.slot][2] = c.v2;
     vec3 n = normalize(cross(c.v1 - c.v0, c.v2 - c.v0));
     f.count = 3u;
     f.normal = dot(n, d) >= 0.0 ? n : -n;
@@ -182,16 +192,16 @@ np_convex np_convex_of_triangle(np_body mesh, np_triangle t)
 }
 
 // The feature shape c presents along the unit direction d, on its surface.
-np_feature np_feature_of(np_convex c, vec3 d)
+np_feature np_feature_of(np_convex c, vec3 d, uint slot)
 {
     uint type = c.body.type;
-    if (type == TB_GPU_SHAPE_CAPSULE) return np_capsule_feature(c, d);
-    if (type == TB_GPU_SHAPE_CYLINDER) return np_cylinder_feature(c, d);
-    if (type == TB_GPU_SHAPE_CONE) return np_cone_feature(c, d);
-    if (type == TB_GPU_SHAPE_BOX) return np_box_feature(c, d);
-    if (type == TB_GPU_SHAPE_HULL) return np_hull_feature(c, d);
-    if (type == NP_SHAPE_TRIANGLE) return np_triangle_feature(c, d);
-    return np_feature_points(c.body.pos + c.radius * d, vec3(0.0), 1u, 0u);   // sphere
+    if (type == TB_GPU_SHAPE_CAPSULE) return np_capsule_feature(c, d, slot);
+    if (type == TB_GPU_SHAPE_CYLINDER) return np_cylinder_feature(c, d, slot);
+    if (type == TB_GPU_SHAPE_CONE) return np_cone_feature(c, d, slot);
+    if (type == TB_GPU_SHAPE_BOX) return np_box_feature(c, d, slot);
+    if (type == TB_GPU_SHAPE_HULL) return np_hull_feature(c, d, slot);
+    if (type == NP_SHAPE_TRIANGLE) return np_triangle_feature(c, d, slot);
+    return np_feature_points(slot, c.body.pos + c.radius * d, vec3(0.0), 1u, 0u);   // sphere
 }
 
 // ---- candidates: clipped corners with their separations and labels ------------------------
@@ -213,7 +223,7 @@ void np_cand_add(vec3 x, uint label)
 // (inside: dot(xyz, x) <= w); zero for an edge of no length.
 vec4 np_face_side(np_feature f, uint s, vec3 centre)
 {
-    vec3 p = f.v[s], q = f.v[s + 1u == f.count ? 0u : s + 1u];
+    vec3 p = np_feature_v[f.slot][s], q = np_feature_v[f.slot][s + 1u == f.count ? 0u : s + 1u];
     vec3 n = cross(q - p, f.normal);
     if (dot(n, n) == 0.0) return vec4(0.0);
     n = normalize(n);
@@ -224,7 +234,7 @@ vec4 np_face_side(np_feature f, uint s, vec3 centre)
 vec3 np_face_centre(np_feature f)
 {
     vec3 c = vec3(0.0);
-    for (uint k = 0u; k < f.count; k++) c += f.v[k];
+    for (uint k = 0u; k < f.count; k++) c += np_feature_v[f.slot][k];
     return c / float(f.count);
 }
 
@@ -248,15 +258,15 @@ void np_clip_line(np_feature ref, np_feature inc)
     vec2 range = vec2(0.0, 1.0);
     for (uint s = 0u; s < ref.count; s++) {
         vec4 side = np_face_side(ref, s, centre);
-        float dp = dot(side.xyz, inc.v[0]) - side.w, dq = dot(side.xyz, inc.v[1]) - side.w;
+        float dp = dot(side.xyz, np_feature_v[inc.slot][0]) - side.w, dq = dot(side.xyz, np_feature_v[inc.slot][1]) - side.w;
         if (dp > 0.0 && dq > 0.0) range = vec2(1.0, 0.0);
         else if (dp > 0.0) range.x = max(range.x, dp / (dp - dq));
         else if (dq > 0.0) range.y = min(range.y, dp / (dp - dq));
     }
     np_cand_count = 0u;
     if (range.x > range.y) return;
-    np_cand_add(mix(inc.v[0], inc.v[1], range.x), 0u);
-    np_cand_add(mix(inc.v[0], inc.v[1], range.y), 1u);
+    np_cand_add(mix(np_feature_v[inc.slot][0], np_feature_v[inc.slot][1], range.x), 0u);
+    np_cand_add(mix(np_feature_v[inc.slot][0], np_feature_v[inc.slot][1], range.y), 1u);
 }
 
 // The incident polygon clipped by the reference face's side planes (Sutherland-Hodgman),
@@ -264,7 +274,7 @@ void np_clip_line(np_feature ref, np_feature inc)
 void np_clip_polygon(np_feature ref, np_feature inc)
 {
     np_cand_count = 0u;
-    for (uint k = 0u; k < inc.count; k++) np_cand_add(inc.v[k], k);
+    for (uint k = 0u; k < inc.count; k++) np_cand_add(np_feature_v[inc.slot][k], k);
     vec3 centre = np_face_centre(ref);
     for (uint s = 0u; s < ref.count && np_cand_count > 0u; s++) {
         vec4 side = np_face_side(ref, s, centre);
@@ -327,20 +337,20 @@ uint np_cand_emit(np_target t, vec4 plane, float margin, uint key)
 uint np_face_contact(np_target t, np_feature ref, np_feature inc, bool ref_first, float margin,
                      out vec3 normal)
 {
-    if (inc.count == 1u) np_clip_point(ref, inc.v[0]);
+    if (inc.count == 1u) np_clip_point(ref, np_feature_v[inc.slot][0]);
     else if (inc.count == 2u) np_clip_line(ref, inc);
     else np_clip_polygon(ref, inc);
     normal = ref_first ? ref.normal : -ref.normal;
     uint key = (ref_first ? 0u : 1u << 30) | ((ref.id & 255u) << 22) | ((inc.id & 255u) << 14);
-    return np_cand_emit(t, vec4(ref.normal, dot(ref.normal, ref.v[0])), margin, key);
+    return np_cand_emit(t, vec4(ref.normal, dot(ref.normal, np_feature_v[ref.slot][0])), margin, key);
 }
 
 // Two parallel lines: the second's part beside the first.
 uint np_line_contact(np_target t, np_feature a, np_feature b, vec3 n, float margin)
 {
-    vec3 da = a.v[1] - a.v[0];
+    vec3 da = np_feature_v[a.slot][1] - np_feature_v[a.slot][0];
     float la = dot(da, da);
-    float s0 = dot(b.v[0] - a.v[0], da) / la, s1 = dot(b.v[1] - a.v[0], da) / la;
+    float s0 = dot(np_feature_v[b.slot][0] - np_feature_v[a.slot][0], da) / la, s1 = dot(np_feature_v[b.slot][1] - np_feature_v[a.slot][0], da) / la;
     vec2 range = vec2(0.0, 1.0);
     if (s0 != s1) {
         float t0 = (0.0 - s0) / (s1 - s0), t1 = (1.0 - s0) / (s1 - s0);
@@ -350,10 +360,10 @@ uint np_line_contact(np_target t, np_feature a, np_feature b, vec3 n, float marg
     }
     np_cand_count = 0u;
     if (range.x > range.y) return 0u;
-    np_cand_add(mix(b.v[0], b.v[1], range.x), 0u);
-    np_cand_add(mix(b.v[0], b.v[1], range.y), 1u);
+    np_cand_add(mix(np_feature_v[b.slot][0], np_feature_v[b.slot][1], range.x), 0u);
+    np_cand_add(mix(np_feature_v[b.slot][0], np_feature_v[b.slot][1], range.y), 1u);
     uint key = ((a.id & 255u) << 22) | ((b.id & 255u) << 14);
-    return np_cand_emit(t, vec4(n, dot(n, a.v[0])), margin, key);
+    return np_cand_emit(t, vec4(n, dot(n, np_feature_v[a.slot][0])), margin, key);
 }
 
 // The manifold of two shapes with unit normal n from A to B and their surface points pa,
@@ -362,7 +372,7 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
                        float margin, out vec3 normal)
 {
     normal = n;
-    np_feature fa = np_feature_of(A, n), fb = np_feature_of(B, -n);
+    np_feature fa = np_feature_of(A, n, 0u), fb = np_feature_of(B, -n, 1u);
     float align_a = fa.count >= 3u ? dot(fa.normal, n) : -2.0;
     float align_b = fb.count >= 3u ? dot(fb.normal, -n) : -2.0;
     uint count = 0u;
@@ -370,7 +380,7 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
         bool ref_a = align_a >= align_b;
         count = np_face_contact(t, ref_a ? fa : fb, ref_a ? fb : fa, ref_a, margin, normal);
     } else if (fa.count == 2u && fb.count == 2u &&
-               abs(dot(normalize(fa.v[1] - fa.v[0]), normalize(fb.v[1] - fb.v[0]))) > 0.985) {
+               abs(dot(normalize(np_feature_v[fa.slot][1] - np_feature_v[fa.slot][0]), normalize(np_feature_v[fb.slot][1] - np_feature_v[fb.slot][0]))) > 0.985) {
         count = np_line_contact(t, fa, fb, n, margin);
     }
     if (count > 0u) return count;
@@ -429,9 +439,9 @@ uint np_plane_round(np_target t, np_body plane, np_body b, float margin, out vec
     vec4 half_space = np_world_plane(plane);
     normal = half_space.xyz;
     np_convex B = np_convex_of(b);
-    np_feature f = np_feature_of(B, -normal);
+    np_feature f = np_feature_of(B, -normal, 0u);
     np_cand_count = 0u;
-    for (uint k = 0u; k < f.count; k++) np_cand_add(f.v[k], k);
+    for (uint k = 0u; k < f.count; k++) np_cand_add(np_feature_v[f.slot][k], k);
     return np_cand_emit(t, half_space, margin, (f.id & 255u) << 14);
 }
 
