@@ -393,6 +393,32 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
 
 // ---- the pairs -----------------------------------------------------------------------------
 
+// How far the cores overlap along the unit axis n (A's farthest point along n beyond B's
+// farthest along -n).
+float np_core_overlap(np_convex A, np_convex B, vec3 n)
+{
+    return dot(n, np_core_support(A, n)) - dot(n, np_core_support(B, -n));
+}
+
+// The penetration depth is the least overlap over all axes, so of EPA's normal and the line
+// between the centres, the one the shapes overlap less along is the better answer: a net
+// under EPA where its polytope went wrong (a float-degenerate start, the size limits) and
+// its normal with it (a normal flipped shows as an overlap of nearly the shapes' size).
+void np_keep_shallower_axis(np_convex A, np_convex B, inout vec3 n, inout vec3 pa,
+                            inout vec3 pb)
+{
+    vec3 c = np_core_centre(B) - np_core_centre(A);
+    if (dot(c, c) == 0.0) return;
+    c = normalize(c);
+    float along_c = np_core_overlap(A, B, c);
+    // Only a clear miss is mended: shapes that barely touch overlap along no axis by more
+    // than float noise, and a curved surface may leave a tilted axis a little shallower.
+    if (!(along_c > 0.0 && along_c < 0.5 * np_core_overlap(A, B, n))) return;
+    n = c;
+    pa = np_core_support(A, c);
+    pb = pa - c * along_c;
+}
+
 // Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
 // overlap. False when they are farther apart than the margin (or EPA found nothing).
 bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
@@ -417,15 +443,28 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec
         n = along_gap ? normalize(gap) : e.normal;
         pa = along_gap ? g.pa : e.pa;
         pb = along_gap ? g.pb : e.pb;
+        np_keep_shallower_axis(A, B, n, pa, pb);
     }
     pa += o + n * A.radius;
     pb += o - n * B.radius;
     return true;
 }
 
+// The radius of a ball about the body origin that holds the shape.
+float np_bounding_radius(np_body b)
+{
+    tb_gpu_shape s = shapes[b.shape];
+    return length(s.aabb_center.xyz) + length(s.aabb_half.xyz);
+}
+
 uint np_convex_round(np_target t, np_body a, np_body b, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
+    // Most pairs the broadphase finds are apart by more than the margin: their bounding
+    // balls tell, before GJK's loop.
+    float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
+    vec3 between = b.pos - a.pos;
+    if (dot(between, between) > reach * reach) return 0u;
     np_convex A = np_convex_of(a), B = np_convex_of(b);
     vec3 n, pa, pb;
     if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
