@@ -281,6 +281,40 @@ static void test_round_towers(void** state)
     tower(cone, 2);
 }
 
+/* A sled: two capsule runners under a box deck, one compound, resting on a plane on its
+ * runners (two lines): within 1 mm over 600 steps, four points. */
+static void test_compound_with_round_children(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    make_ground(w, ON_PLANE);
+    tb_shape_id runner = make_round(w, TB_SHAPE_CAPSULE, 0.05f, 0.5f), deck = th_box(w, th_v3(0.4f, 0.05f, 0.6f));
+    tb_quat along_z = th_quat_axis_angle(th_v3(1, 0, 0), M_PI / 2);
+    tb_compound_child parts[3] = { { runner, th_v3(-0.3f, 0, 0), along_z },
+                                   { runner, th_v3(0.3f, 0, 0), along_z },
+                                   { deck, th_v3(0, 0.1f, 0), { 0, 0, 0, 1 } } };
+    tb_shape_id sled;
+    th_assert_ok(tb_shape_create_compound(w, parts, 3, &sled));
+    tb_compound_info info;
+    th_assert_ok(tb_shape_get_compound_info(w, sled, &info));
+    /* The body frame is the composed principal frame: place it so the runners touch y = 0. */
+    tb_body_def def = th_dynamic_def(sled, th_v3(0, 0.05f + info.center_of_mass.y, 0));
+    def.rotation = (tb_quat){ info.principal_axes.x, info.principal_axes.y,
+                              info.principal_axes.z, info.principal_axes.w };
+    tb_body_id body = th_body(w, &def);
+    step(w, 600);
+    tb_vec3 p;
+    tb_quat q;
+    th_read_pose(w, body, &p, &q);
+    double deepest;
+    uint32_t n = points_of(w, body, &deepest);
+    printf("sled: drift %.3f mm, %u points, deepest %.3f mm\n", 1e3 * dist3(p, def.position), n,
+           1e3 * deepest);
+    assert_true(dist3(p, def.position) < 1e-3);
+    assert_int_equal(n, 4);
+    th_world_destroy(w);
+}
+
 /* ---- sizes, mass and refusals --------------------------------------------------------- */
 
 /* Volume and principal moments per unit mass of a solid of revolution about y, integrated
@@ -418,6 +452,7 @@ int main(void)
         cmocka_unit_test(test_rest_on_mesh),
         cmocka_unit_test(test_cylinder_rolls_down_incline),
         cmocka_unit_test(test_round_towers),
+        cmocka_unit_test(test_compound_with_round_children),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
