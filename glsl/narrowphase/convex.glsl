@@ -7,6 +7,13 @@
 // separated pair of cores (no penetration query), and the shapes' distance is the cores'
 // distance less both radii.
 //
+// Contacts (np_convex_rounded) give cylinders and cones a core too: the shape shrunk by a
+// skin (NP_SKIN, at most a tenth of its radius and height) swept by a ball of the skin's
+// radius. Its caps, base and sides stay where they are, its rims and a cone's apex are
+// rounded by the skin. Resting contacts then sink into the skin only, so GJK alone finds
+// them and EPA runs only for overlaps deeper than the skin. Distance queries measure the
+// exact shapes (np_convex_of).
+//
 // Capsules, cylinders and cones lie along the body's y axis (params: x radius, y half
 // height h; a cone's base circle at y = -h/2 and apex at 3h/2, the body origin at its centre
 // of mass). A mesh triangle joins as a shape of its own (NP_SHAPE_TRIANGLE) whose three
@@ -16,19 +23,50 @@
 
 #define NP_SHAPE_TRIANGLE 100u
 
+#define NP_SKIN 0.04         // m: the most skin a cylinder or cone gets for contacts
+
 struct np_convex {
     np_body body;       // pose and shape (body.type NP_SHAPE_TRIANGLE for a triangle)
     vec3 v0, v1, v2;    // a triangle's corners, world space
+    vec3 core;          // capsule, cylinder, cone: x the core's rim radius, y its bottom and
+                        // z its top along the body's y axis (a cone's apex)
     float radius;       // the ball swept over the core
 };
 
+// The exact shape: spheres and capsules balls about their points and segments.
 np_convex np_convex_of(np_body b)
 {
     np_convex c;
     c.body = b;
     c.v0 = c.v1 = c.v2 = vec3(0.0);
+    float r = b.params.x, h = b.params.y;
+    c.core = b.type == TB_GPU_SHAPE_CONE ? vec3(r, -0.5 * h, 1.5 * h) : vec3(r, -h, h);
+    if (b.type == TB_GPU_SHAPE_CAPSULE) c.core.x = 0.0;
     bool balled = b.type == TB_GPU_SHAPE_SPHERE || b.type == TB_GPU_SHAPE_CAPSULE;
-    c.radius = balled ? b.params.x : 0.0;
+    c.radius = balled ? r : 0.0;
+    return c;
+}
+
+// The shape for contacts: a cylinder or cone as its core shrunk by the skin s, swept by a
+// ball of radius s. A cone's core is the cone whose sides lie s inside the shape's: its base
+// s higher, its apex s / sin(half angle) lower, its rim radius in the same proportion.
+np_convex np_convex_rounded(np_body b)
+{
+    np_convex c = np_convex_of(b);
+    float r = b.params.x, h = b.params.y;
+    if (b.type == TB_GPU_SHAPE_CYLINDER) {
+        float s = min(NP_SKIN, 0.1 * min(r, h));
+        c.core = vec3(r - s, s - h, h - s);
+        c.radius = s;
+    } else if (b.type == TB_GPU_SHAPE_CONE) {
+        float height = 2.0 * h, slant = length(vec2(r, height));
+        float s = min(NP_SKIN, 0.1 * min(r, height));
+        float inner = height - s - s * slant / r;    // sin(half angle) = r / slant
+        if (inner > 0.1 * height) {
+            c.core = vec3(r * inner / height, s - 0.5 * h, s - 0.5 * h + inner);
+            c.radius = s;
+        }
+    }
     return c;
 }
 
@@ -45,16 +83,16 @@ vec3 np_core_support_local(np_convex c, vec3 d)
 {
     uint type = c.body.type;
     vec4 p = c.body.params;
-    float up = d.y >= 0.0 ? 1.0 : -1.0;
-    if (type == TB_GPU_SHAPE_CAPSULE) return vec3(0.0, up * p.y, 0.0);
+    vec3 core = c.core;
+    if (type == TB_GPU_SHAPE_CAPSULE) return vec3(0.0, d.y >= 0.0 ? core.z : core.y, 0.0);
     if (type == TB_GPU_SHAPE_CYLINDER) {
-        vec2 rim = np_rim(d.xz, p.x);
-        return vec3(rim.x, up * p.y, rim.y);
+        vec2 rim = np_rim(d.xz, core.x);
+        return vec3(rim.x, d.y >= 0.0 ? core.z : core.y, rim.y);
     }
     if (type == TB_GPU_SHAPE_CONE) {
-        vec3 apex = vec3(0.0, 1.5 * p.y, 0.0);
-        vec2 rim = np_rim(d.xz, p.x);
-        vec3 base = vec3(rim.x, -0.5 * p.y, rim.y);
+        vec3 apex = vec3(0.0, core.z, 0.0);
+        vec2 rim = np_rim(d.xz, core.x);
+        vec3 base = vec3(rim.x, core.y, rim.y);
         return dot(d, apex) >= dot(d, base) ? apex : base;
     }
     if (type == TB_GPU_SHAPE_BOX) return np_signs(d) * p.xyz;

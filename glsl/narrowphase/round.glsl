@@ -187,6 +187,7 @@ np_convex np_convex_of_triangle(np_body mesh, np_triangle t)
     c.v0 = t.v0;
     c.v1 = t.v1;
     c.v2 = t.v2;
+    c.core = vec3(0.0);
     c.radius = 0.0;
     return c;
 }
@@ -465,7 +466,7 @@ uint np_convex_round(np_target t, np_body a, np_body b, float margin, out vec3 n
     float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
     vec3 between = b.pos - a.pos;
     if (dot(between, between) > reach * reach) return 0u;
-    np_convex A = np_convex_of(a), B = np_convex_of(b);
+    np_convex A = np_convex_rounded(a), B = np_convex_rounded(b);
     vec3 n, pa, pb;
     if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
     return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
@@ -492,7 +493,7 @@ uint np_triangle_round(np_target t, np_body mesh, np_triangle tri, np_body b, fl
 {
     normal = vec3(0.0);
     if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
-    np_convex A = np_convex_of_triangle(mesh, tri), B = np_convex_of(b);
+    np_convex A = np_convex_of_triangle(mesh, tri), B = np_convex_rounded(b);
     vec3 front = tri.normal;
     float highest = dot(np_core_support(B, front) - tri.v0, front) + B.radius;
     if (highest < 0.0) return 0u;
