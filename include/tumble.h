@@ -489,6 +489,22 @@ TB_API uint32_t tb_world_shape_ids(const tb_world* world, tb_shape_id* out, uint
  * Distance queries
  */
 
+/// How a distance query measures the depth where the shapes' cores overlap.
+typedef enum tb_penetration {
+    /// EPA: the accurate one on the measured pairs (docs/shapes.md), so the default.
+    TB_PENETRATION_DEFAULT = 0,
+    /// The expanding polytope algorithm: the least overlap over all directions, to within
+    /// the polytope it builds (its depth is at most the true one).
+    TB_PENETRATION_EPA = 1,
+    /// Minkowski portal refinement: the overlap along the direction in which the ray from
+    /// the centre difference through the origin leaves the shapes' Minkowski difference. No
+    /// polytope is kept; it is exact where the line between the centres meets the surface
+    /// at right angles (a ball, a face met head on) and deeper than the true depth where it
+    /// does not.
+    TB_PENETRATION_MPR = 2,
+    TB_PENETRATION_FORCE_32 = 0x7fffffff
+} tb_penetration;
+
 /// Two convex shapes (spheres, boxes, hulls, capsules, cylinders, cones) of the world, each
 /// placed by a pose of its body frame (no body is needed).
 typedef struct tb_distance_query {
@@ -497,13 +513,14 @@ typedef struct tb_distance_query {
     tb_quat rotation_a;     ///< unit within 1e-3 (then normalised)
     tb_vec3 position_b;
     tb_quat rotation_b;
+    tb_penetration penetration;   ///< the depth's method; 0 (zero-initialised) the default
 } tb_distance_query;
 
 typedef enum tb_distance_status {
     TB_DISTANCE_SEPARATED = 0,   ///< apart, or touching through a sphere's or capsule's radius
-    TB_DISTANCE_OVERLAP = 1,     ///< the shapes' cores overlap: distance is minus EPA's depth
+    TB_DISTANCE_OVERLAP = 1,     ///< the shapes' cores overlap: distance is minus the depth
     TB_DISTANCE_LIMIT = 2,       ///< GJK stopped at its iteration limit with its best answer
-    TB_DISTANCE_FAILED = 3,      ///< overlapping, and EPA found no depth (degenerate shapes)
+    TB_DISTANCE_FAILED = 3,      ///< overlapping, and EPA or MPR found no depth (degenerate)
     TB_DISTANCE_STATUS_FORCE_32 = 0x7fffffff
 } tb_distance_status;
 
@@ -517,11 +534,12 @@ typedef struct tb_distance_result {
 } tb_distance_result;
 
 /// Distances between `count` pairs of posed convex shapes, computed on the GPU (one thread a
-/// query: GJK with the signed-volume sub-algorithm on the shapes' cores, EPA where the cores
-/// overlap), written to out[0..count). Runs between steps and changes nothing in the world.
-/// Fails with TB_ERROR_INVALID_ARGUMENT (nothing run) on NULL arrays with count > 0, a
-/// shape that is not convex, a position that is not finite, or a rotation that is not a unit
-/// quaternion; with TB_ERROR_INVALID_ID or TB_ERROR_STALE_ID on a shape id that names no
+/// query: GJK with the signed-volume sub-algorithm on the shapes' cores; where the cores
+/// overlap, EPA or MPR as the query's `penetration` asks), written to out[0..count). Runs
+/// between steps and changes nothing in the world. Fails with TB_ERROR_INVALID_ARGUMENT
+/// (nothing run, nothing written) on NULL arrays with count > 0, a shape that is not convex,
+/// a position that is not finite, a rotation that is not a unit quaternion, or an unknown
+/// `penetration`; with TB_ERROR_INVALID_ID or TB_ERROR_STALE_ID on a shape id that names no
 /// live shape. The error names the first bad query.
 TB_API tb_result tb_world_query_distances(tb_world* world, const tb_distance_query* queries,
                                           uint32_t count, tb_distance_result* out);

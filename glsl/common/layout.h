@@ -609,10 +609,21 @@ TB_STRUCT(tb_gpu_compound_child) {
 #define TB_PAIR_UNSPLIT           TB_U(0xffffffff)
 
 /* query/distance (tb_world_query_distances): the distance between two convex shapes placed
- * by poses, GJK on their cores and EPA where the cores overlap (glsl/narrowphase/gjk.glsl,
- * epa.glsl). One thread per query. */
+ * by poses, GJK on their cores and, where the cores overlap, EPA or MPR as the query chose
+ * (glsl/narrowphase/gjk.glsl, epa.glsl, mpr.glsl). One thread per query.
+ *
+ * The shape-index words (position_a.w, position_b.w, uint bits) hold the shape's slot in
+ * their low TB_DISTANCE_SHAPE_BITS bits (the host refuses a slot that does not fit). Above
+ * them position_a.w holds the penetration method, TB_DISTANCE_METHOD_EPA or _MPR (the host
+ * resolves TB_PENETRATION_DEFAULT); position_b.w holds 0 there. With the method at most 1
+ * the word is a small float's bits, never a NaN's. */
+#define TB_DISTANCE_SHAPE_BITS    24
+#define TB_DISTANCE_SHAPE_MASK    ((TB_U(1) << TB_DISTANCE_SHAPE_BITS) - TB_U(1))
+#define TB_DISTANCE_METHOD_EPA    TB_U(0)
+#define TB_DISTANCE_METHOD_MPR    TB_U(1)
 TB_STRUCT(tb_gpu_distance_query) {
-    TB_VEC4 position_a;       /* xyz shape a's origin, w its shape index (uint bits) */
+    TB_VEC4 position_a;       /* xyz shape a's origin, w its shape index and the method
+                                 (uint bits, above) */
     TB_VEC4 rotation_a;       /* unit quaternion xyzw */
     TB_VEC4 position_b;       /* as for a */
     TB_VEC4 rotation_b;

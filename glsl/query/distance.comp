@@ -4,7 +4,8 @@
 #extension GL_EXT_buffer_reference_uvec2 : require
 // query/distance: one thread per query of tb_world_query_distances. The two convex shapes,
 // placed by the query's poses, are measured by GJK on their cores (convex.glsl); where the
-// cores overlap, EPA gives the depth. The distance is between the surfaces (the cores' less
+// cores overlap, EPA or MPR gives the depth, as the query chose (the method's bits above the
+// shape index, layout.h). The distance is between the surfaces (the cores' less
 // both radii): negative is the depth of overlap, the normal runs from a to b, and the points
 // are the closest (apart) or deepest (overlapping) points of each surface.
 #include "world.glsl"
@@ -14,6 +15,7 @@
 #include "../narrowphase/convex.glsl"
 #include "../narrowphase/gjk.glsl"
 #include "../narrowphase/epa.glsl"
+#include "../narrowphase/mpr.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_distance_push push; };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Queries {
@@ -25,7 +27,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) writeonly buffer R
 
 np_body posed(vec4 position, vec4 rotation)
 {
-    uint s = floatBitsToUint(position.w);
+    uint s = floatBitsToUint(position.w) & TB_DISTANCE_SHAPE_MASK;
     np_body b;
     b.pos = position.xyz;
     b.rot = quat_to_mat3(rotation);
@@ -34,6 +36,14 @@ np_body posed(vec4 position, vec4 rotation)
     b.type = shapes[s].info.x;
     b.shape = s;
     return b;
+}
+
+// The depth of overlapping cores by the query's method, as EPA's answer.
+np_epa_result penetration(np_convex A, np_convex B, np_simplex s, uint word)
+{
+    if ((word >> TB_DISTANCE_SHAPE_BITS) != TB_DISTANCE_METHOD_MPR) return np_epa(A, B, s);
+    np_mpr_result m = np_mpr(A, B);
+    return np_epa_result(m.found, m.normal, m.depth, m.pa, m.pb);
 }
 
 void main()
@@ -53,9 +63,9 @@ void main()
         n = (g.pb - g.pa) / g.distance;
         distance = g.distance;
     } else {
-        np_epa_result e = np_epa(A, B, g.simplex);
-        // Cores that only touch: EPA's nearest face, or else GJK's points, their distance
-        // and direction.
+        np_epa_result e = penetration(A, B, g.simplex, floatBitsToUint(q.position_a.w));
+        // Cores that only touch: EPA's nearest face (MPR's last portal), or else GJK's
+        // points, their distance and direction.
         vec3 gap = g.pb - g.pa;
         bool along_gap = !e.found && e.normal == vec3(0.0) && dot(gap, gap) > 0.0;
         status = e.found ? NP_GJK_OVERLAP

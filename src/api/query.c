@@ -1,5 +1,6 @@
 /* Distance queries through the API: every query checked (live convex shapes, finite
- * positions, unit rotations) before any runs, then packed for the GPU (src/world/query.c). */
+ * positions, unit rotations, a known penetration method) before any runs, then packed for
+ * the GPU (src/world/query.c). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,9 @@ static tb_result pack_side(tb_world* w, uint32_t i, char side, tb_shape_id id, t
     if (!convex(s->type))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "distance query %u: shape %c is "
                        "not convex (type %d)", i, side, (int)s->type);
+    if (slot > TB_DISTANCE_SHAPE_MASK)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "distance query %u: shape %c's slot "
+                       "%u is beyond what a query can name", i, side, slot);
     if (!tb_finite3(position))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "distance query %u: position %c is "
                        "not finite", i, side);
@@ -38,6 +42,25 @@ static tb_result pack_side(tb_world* w, uint32_t i, char side, tb_shape_id id, t
     return TB_OK;
 }
 
+/* Query i's penetration method as the GPU reads it, above a's shape index (layout.h). EPA
+ * is the default: on the measured pairs its depths are the accurate ones (docs/shapes.md). */
+static tb_result pack_method(tb_world* w, uint32_t i, tb_penetration method, tb_gpu_vec4* out)
+{
+    uint32_t bits;
+    if (method == TB_PENETRATION_DEFAULT || method == TB_PENETRATION_EPA)
+        bits = TB_DISTANCE_METHOD_EPA;
+    else if (method == TB_PENETRATION_MPR)
+        bits = TB_DISTANCE_METHOD_MPR;
+    else
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "distance query %u: penetration "
+                       "method %d is unknown", i, (int)method);
+    uint32_t word;
+    memcpy(&word, &out->w, sizeof word);
+    word |= bits << TB_DISTANCE_SHAPE_BITS;
+    memcpy(&out->w, &word, sizeof word);
+    return TB_OK;
+}
+
 static tb_result pack(tb_world* w, const tb_distance_query* q, uint32_t count,
                       tb_gpu_distance_query* out)
 {
@@ -47,6 +70,7 @@ static tb_result pack(tb_world* w, const tb_distance_query* q, uint32_t count,
                       &out[i].rotation_a);
         if (!r) r = pack_side(w, i, 'b', q[i].b, q[i].position_b, q[i].rotation_b,
                               &out[i].position_b, &out[i].rotation_b);
+        if (!r) r = pack_method(w, i, q[i].penetration, &out[i].position_a);
     }
     return r;
 }

@@ -1,13 +1,30 @@
-/* bench-distance: distance queries per second (tb_world_query_distances) at several sizes.
+/* bench-distance: distance queries per second (tb_world_query_distances) at several sizes,
+ * and the depths of the two penetration methods, EPA and MPR, on the same pairs.
  *
- *   bench-distance [--sizes N,N,...] [--reps R]
+ *   bench-distance [--sizes N,N,...] [--reps R] [--penetration epa|mpr|both]
  *
  * Random pairs of the six convex kinds (spheres, boxes, hulls of 16 points, capsules,
  * cylinders, cones; sizes 0.1 to 1 m, random rotations) in three sets: apart (GJK alone),
- * overlapping (GJK, then EPA) and mixed (half each). Each size runs R times; the median
- * wall time of the call is reported, which includes checking and packing the queries on
- * the host and their way to and from the GPU through host-visible memory. Prints one line
- * per set and size: queries, median ms, millions of queries per second.
+ * overlapping (GJK, then EPA or MPR) and mixed (half each). Each size runs R times; the
+ * median wall time of the call is reported, which includes checking and packing the queries
+ * on the host and their way to and from the GPU through host-visible memory. The
+ * overlapping and mixed sets run once for each method asked for (default both), on the same
+ * pairs; the apart set runs once (its queries never reach a penetration method).
+ *
+ * Depths are measured where the shapes' cores overlap (either method's status OVERLAP or
+ * FAILED), against a reference on the host in double precision: the penetration depth of
+ * two convex shapes is their least overlap over all unit axes, and the reference is the
+ * least overlap found by a local search on the sphere of directions (least_overlap) from
+ * EPA's normal and from MPR's (both methods run for it, the one not asked for untimed).
+ * That reference is an overlap along some axis, so it is at least the true depth.
+ *
+ * Prints CSV, one line per set, size and method: set, queries, median ms, millions of
+ * queries per second, the share of overlapping answers (distance < 0); then the method
+ * (epa, mpr, or - for the apart set), the pairs measured for depth, the median and 99th
+ * percentile of the relative depth error |depth - reference| / (reference + 1e-3 of the
+ * smaller shape), the share of those pairs with an error over 1 %, and the median and 99th
+ * percentile of the angle between the method's normal and the reference's axis, degrees.
+ * The depth columns are empty for the apart set.
  */
 #include <math.h>
 #include <stdio.h>
@@ -20,6 +37,17 @@
 #define MAX_SIZES 16
 #define MAX_REPS 32
 #define SHAPES 24
+#define HULL_POINTS 16
+
+/* A shape as the host's reference sees it, in its body frame. */
+typedef struct shape {
+    tb_shape_id id;
+    int kind;                     /* 0 sphere, 1 box, 2 hull, 3 capsule, 4 cylinder, 5 cone */
+    double a, b, c;               /* radius (box: half x), half height (box: half y), box z */
+    double points[256][3];        /* hull vertices */
+    uint32_t point_count;
+    double size;
+} shape;
 
 static uint64_t state = 88172645463325252ull;
 
@@ -39,34 +67,39 @@ static tb_quat random_rotation(void)
 
 static void die(tb_world* w, const char* what)
 {
-    fprintf(stderr, "bench-distance: %s: %s\n", what, tb_world_last_error(w));
+    if (w) fprintf(stderr, "bench-distance: %s: %s\n", what, tb_world_last_error(w));
+    else fprintf(stderr, "bench-distance: %s\n", what);
     exit(1);
 }
 
-static tb_shape_id make_shape(tb_world* w, int kind, float size)
+static void make_shape(tb_world* w, int kind, float size, shape* s)
 {
     tb_shape_def def = tb_default_shape_def();
-    tb_shape_id s;
     tb_result r;
     float a = size * (float)uniform(0.5, 1), b = size * (float)uniform(0.3, 1);
-    if (kind == 0) r = tb_shape_create_sphere(w, &def, a, &s);
-    else if (kind == 1) r = tb_shape_create_box(w, &def, (tb_vec3){ a, b, size }, &s);
+    memset(s, 0, sizeof *s);
+    s->kind = kind, s->a = a, s->b = b, s->c = size, s->size = size;
+    if (kind == 0) r = tb_shape_create_sphere(w, &def, a, &s->id);
+    else if (kind == 1) r = tb_shape_create_box(w, &def, (tb_vec3){ a, b, size }, &s->id);
     else if (kind == 2) {
-        tb_vec3 p[16];
-        for (int k = 0; k < 16; k++)
+        tb_vec3 p[HULL_POINTS], v[256];
+        for (int k = 0; k < HULL_POINTS; k++)
             p[k] = (tb_vec3){ a * (float)uniform(-1, 1), b * (float)uniform(-1, 1),
                               size * (float)uniform(-1, 1) };
-        r = tb_shape_create_hull(w, &def, p, 16, &s);
-    } else if (kind == 3) r = tb_shape_create_capsule(w, &def, a, b, &s);
-    else if (kind == 4) r = tb_shape_create_cylinder(w, &def, a, b, &s);
-    else r = tb_shape_create_cone(w, &def, a, b, &s);
+        r = tb_shape_create_hull(w, &def, p, HULL_POINTS, &s->id);
+        if (!r) r = tb_shape_get_hull_vertices(w, s->id, v, 256, &s->point_count);
+        for (uint32_t k = 0; !r && k < s->point_count; k++)
+            s->points[k][0] = v[k].x, s->points[k][1] = v[k].y, s->points[k][2] = v[k].z;
+    } else if (kind == 3) r = tb_shape_create_capsule(w, &def, a, b, &s->id);
+    else if (kind == 4) r = tb_shape_create_cylinder(w, &def, a, b, &s->id);
+    else r = tb_shape_create_cone(w, &def, a, b, &s->id);
     if (r) die(w, "shape");
-    return s;
 }
 
 /* `overlap`: 0 apart (centres 2.2 to 4 m apart, beyond any two shapes' reach), 1 centres
  * within 0.3 m (overlapping), 2 either at random. */
-static void fill(tb_distance_query* q, uint32_t n, const tb_shape_id* shapes, int overlap)
+static void fill(tb_distance_query* q, const shape** pick, uint32_t n, const shape* shapes,
+                 int overlap)
 {
     for (uint32_t i = 0; i < n; i++) {
         int close = overlap == 2 ? (int)(i & 1u) : overlap;
@@ -74,13 +107,114 @@ static void fill(tb_distance_query* q, uint32_t n, const tb_shape_id* shapes, in
         double d[3] = { uniform(-1, 1), uniform(-1, 1), uniform(-1, 1) };
         double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + 1e-9;
         tb_vec3 o = { (float)uniform(-50, 50), (float)uniform(-50, 50), (float)uniform(-50, 50) };
+        pick[2 * i] = &shapes[i % SHAPES];
+        pick[2 * i + 1] = &shapes[(i / SHAPES + 7 * i) % SHAPES];
         q[i] = (tb_distance_query){
-            shapes[i % SHAPES], shapes[(i / SHAPES + 7 * i) % SHAPES], o, random_rotation(),
+            pick[2 * i]->id, pick[2 * i + 1]->id, o, random_rotation(),
             { o.x + (float)(reach * d[0] / len), o.y + (float)(reach * d[1] / len),
-              o.z + (float)(reach * d[2] / len) }, random_rotation(),
+              o.z + (float)(reach * d[2] / len) }, random_rotation(), TB_PENETRATION_DEFAULT,
         };
     }
 }
+
+/* ---- the host's reference, in double --------------------------------------------------- */
+
+typedef struct posed {
+    const shape* s;
+    double p[3], r[9];            /* r: rotation matrix, columns the body axes */
+} posed;
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static posed posed_of(const shape* s, tb_vec3 p, tb_quat q)
+{
+    posed b = { s, { p.x, p.y, p.z }, { 0 } };
+    double x = q.x, y = q.y, z = q.z, w = q.w;
+    double n = sqrt(x * x + y * y + z * z + w * w);
+    x /= n, y /= n, z /= n, w /= n;
+    double* r = b.r;
+    r[0] = 1 - 2 * (y * y + z * z), r[1] = 2 * (x * y + z * w), r[2] = 2 * (x * z - y * w);
+    r[3] = 2 * (x * y - z * w), r[4] = 1 - 2 * (x * x + z * z), r[5] = 2 * (y * z + x * w);
+    r[6] = 2 * (x * z + y * w), r[7] = 2 * (y * z - x * w), r[8] = 1 - 2 * (x * x + y * y);
+    return b;
+}
+
+/* The shape's extent along world axis d from its position, its rounding radius included:
+ * the core's farthest point along d (the kinds' cores as glsl/narrowphase/convex.glsl
+ * describes them), plus the radius for spheres and capsules. */
+static double reach_along(const posed* b, const double d[3])
+{
+    double l[3];
+    for (int i = 0; i < 3; i++) l[i] = dot3(&b->r[3 * i], d);
+    const shape* s = b->s;
+    double rho = sqrt(l[0] * l[0] + l[2] * l[2]), c = 0;
+    if (s->kind == 0) c = s->a;
+    else if (s->kind == 1) c = s->a * fabs(l[0]) + s->b * fabs(l[1]) + s->c * fabs(l[2]);
+    else if (s->kind == 2) {
+        c = dot3(s->points[0], l);
+        for (uint32_t k = 1; k < s->point_count; k++) c = fmax(c, dot3(s->points[k], l));
+    } else if (s->kind == 3) c = s->b * fabs(l[1]) + s->a;
+    else if (s->kind == 4) c = s->a * rho + s->b * fabs(l[1]);
+    else c = fmax(1.5 * s->b * l[1], s->a * rho - 0.5 * s->b * l[1]);
+    return dot3(b->p, d) + c;
+}
+
+/* How far the shapes overlap along the unit axis n (b moved along n parts them): no axis
+ * overlaps them less than their penetration depth. */
+static double overlap_along(const posed* a, const posed* b, const double n[3])
+{
+    double m[3] = { -n[0], -n[1], -n[2] };
+    return reach_along(a, n) + reach_along(b, m);
+}
+
+/* The least overlap from the start axis n: a local search on the sphere of directions,
+ * a step along each of eight tangent directions (the star turned by the golden angle every
+ * round, so that a ridge of the overlap between two of them does not hold it), the best
+ * kept, the step halved when none improves, until it is under 1e-9 rad. Leaves the axis in
+ * n. */
+static double least_overlap(const posed* a, const posed* b, double n[3])
+{
+    double best = overlap_along(a, b, n), step = 0.1, turn = 0;
+    for (int rounds = 0; step > 1e-9 && rounds < 4000; rounds++) {
+        double e[3] = { 0, 0, 0 }, u[3], v[3], pick[3];
+        e[fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2)
+                                  : (fabs(n[1]) < fabs(n[2]) ? 1 : 2)] = 1;
+        u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2];
+        u[2] = n[0] * e[1] - n[1] * e[0];
+        double lu = sqrt(dot3(u, u));
+        for (int i = 0; i < 3; i++) u[i] /= lu;
+        v[0] = n[1] * u[2] - n[2] * u[1], v[1] = n[2] * u[0] - n[0] * u[2];
+        v[2] = n[0] * u[1] - n[1] * u[0];
+        turn += 2.399963;
+        int moved = 0;
+        for (int k = 0; k < 8; k++) {
+            double c = step * cos(turn + k * 0.785398163), d = step * sin(turn + k * 0.785398163);
+            double m[3] = { n[0] + c * u[0] + d * v[0], n[1] + c * u[1] + d * v[1],
+                            n[2] + c * u[2] + d * v[2] };
+            double lm = sqrt(dot3(m, m));
+            for (int i = 0; i < 3; i++) m[i] /= lm;
+            double o = overlap_along(a, b, m);
+            if (o < best) best = o, memcpy(pick, m, sizeof pick), moved = 1;
+        }
+        if (moved) memcpy(n, pick, sizeof pick);
+        else step *= 0.5;
+    }
+    return best;
+}
+
+/* ---- measuring ------------------------------------------------------------------------ */
+
+enum { EPA, MPR, METHODS };
+static const tb_penetration method_enum[METHODS] = { TB_PENETRATION_EPA, TB_PENETRATION_MPR };
+static const char* method_name[METHODS] = { "epa", "mpr" };
+
+typedef struct depths {
+    uint32_t pairs;
+    double err_median, err_p99, over_1pct, deg_median, deg_p99;
+} depths;
 
 static double now_ms(void)
 {
@@ -95,49 +229,145 @@ static int by_value(const void* a, const void* b)
     return x < y ? -1 : x > y;
 }
 
+/* The median wall time of `reps` calls, after one to warm up. */
+static double time_queries(tb_world* w, const tb_distance_query* q, uint32_t n, uint32_t reps,
+                           tb_distance_result* out)
+{
+    if (tb_world_query_distances(w, q, n, out)) die(w, "query");
+    double ms[MAX_REPS];
+    for (uint32_t r = 0; r < reps; r++) {
+        double t0 = now_ms();
+        if (tb_world_query_distances(w, q, n, out)) die(w, "query");
+        ms[r] = now_ms() - t0;
+    }
+    qsort(ms, reps, sizeof *ms, by_value);
+    return ms[reps / 2];
+}
+
+static int cores_overlap(const tb_distance_result* r)
+{
+    return r->status == TB_DISTANCE_OVERLAP || r->status == TB_DISTANCE_FAILED;
+}
+
+static double percentile(double* v, uint32_t n, double p)
+{
+    return n ? v[(uint32_t)(p * (n - 1) + 0.5)] : NAN;
+}
+
+/* Each method's depth errors on the pairs whose cores overlap, against the reference from
+ * both methods' normals. */
+static void measure_depths(const tb_distance_query* q, const shape** pick, uint32_t n,
+                           tb_distance_result* const out[METHODS], depths d[METHODS])
+{
+    double* err[METHODS];
+    double* deg[METHODS];
+    for (int m = 0; m < METHODS; m++) {
+        err[m] = malloc((size_t)n * sizeof(double));
+        deg[m] = malloc((size_t)n * sizeof(double));
+        if (!err[m] || !deg[m]) die(NULL, "out of memory");
+        memset(&d[m], 0, sizeof d[m]);
+    }
+    uint32_t k = 0, over[METHODS] = { 0 };
+    for (uint32_t i = 0; i < n; i++) {
+        if (!cores_overlap(&out[EPA][i]) && !cores_overlap(&out[MPR][i])) continue;
+        posed a = posed_of(pick[2 * i], q[i].position_a, q[i].rotation_a);
+        posed b = posed_of(pick[2 * i + 1], q[i].position_b, q[i].rotation_b);
+        double axis[METHODS][3], depth[METHODS];
+        for (int m = 0; m < METHODS; m++) {
+            tb_vec3 nv = out[m][i].normal;
+            axis[m][0] = nv.x, axis[m][1] = nv.y, axis[m][2] = nv.z;
+            depth[m] = least_overlap(&a, &b, axis[m]);
+        }
+        int best = depth[MPR] < depth[EPA];
+        double ref = depth[best], scale = 1e-3 * fmin(a.s->size, b.s->size);
+        for (int m = 0; m < METHODS; m++) {
+            tb_vec3 nv = out[m][i].normal;
+            double c = (nv.x * axis[best][0] + nv.y * axis[best][1] + nv.z * axis[best][2]) /
+                       sqrt(nv.x * nv.x + nv.y * nv.y + nv.z * nv.z);
+            err[m][k] = fabs(-out[m][i].distance - ref) / (ref + scale);
+            deg[m][k] = acos(fmax(-1.0, fmin(1.0, c))) * 57.29577951308232;
+            over[m] += err[m][k] > 0.01;
+        }
+        k++;
+    }
+    for (int m = 0; m < METHODS; m++) {
+        qsort(err[m], k, sizeof(double), by_value);
+        qsort(deg[m], k, sizeof(double), by_value);
+        d[m] = (depths){ k, percentile(err[m], k, 0.5), percentile(err[m], k, 0.99),
+                         k ? (double)over[m] / k : NAN, percentile(deg[m], k, 0.5),
+                         percentile(deg[m], k, 0.99) };
+        free(err[m]);
+        free(deg[m]);
+    }
+}
+
+static void print_line(const char* set, uint32_t n, double ms, const tb_distance_result* out,
+                       const char* method, const depths* d)
+{
+    uint32_t overlapping = 0;
+    for (uint32_t i = 0; i < n; i++) overlapping += out[i].distance < 0;
+    printf("%s,%u,%.3f,%.2f,%.3f,%s", set, n, ms, n / ms / 1e3, (double)overlapping / n, method);
+    if (d) printf(",%u,%.3g,%.3g,%.4f,%.3g,%.3g\n", d->pairs, d->err_median, d->err_p99,
+                  d->over_1pct, d->deg_median, d->deg_p99);
+    else printf(",,,,,,\n");
+}
+
 int main(int argc, char** argv)
 {
     uint32_t sizes[MAX_SIZES] = { 10000, 100000, 1000000 }, count = 3, reps = 5;
+    int asked[METHODS] = { 1, 1 };
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!strcmp(argv[i], "--reps")) reps = (uint32_t)atoi(argv[i + 1]);
         else if (!strcmp(argv[i], "--sizes")) {
             count = 0;
             for (char* s = strtok(argv[i + 1], ","); s && count < MAX_SIZES; s = strtok(NULL, ","))
                 sizes[count++] = (uint32_t)strtoul(s, NULL, 10);
+        } else if (!strcmp(argv[i], "--penetration")) {
+            asked[EPA] = !strcmp(argv[i + 1], "epa") || !strcmp(argv[i + 1], "both");
+            asked[MPR] = !strcmp(argv[i + 1], "mpr") || !strcmp(argv[i + 1], "both");
+            if (!asked[EPA] && !asked[MPR]) die(NULL, "--penetration takes epa, mpr or both");
         }
     }
     if (reps < 1 || reps > MAX_REPS) reps = 5;
     tb_world_def def = tb_default_world_def();
     tb_world* w;
     if (tb_world_create(&def, &w)) die(NULL, "world");
-    tb_shape_id shapes[SHAPES];
-    for (int s = 0; s < SHAPES; s++) shapes[s] = make_shape(w, s % 6, (float)uniform(0.1, 1.0));
+    static shape shapes[SHAPES];
+    for (int s = 0; s < SHAPES; s++) make_shape(w, s % 6, (float)uniform(0.1, 1.0), &shapes[s]);
     uint32_t most = 0;
     for (uint32_t k = 0; k < count; k++) most = sizes[k] > most ? sizes[k] : most;
     tb_distance_query* q = malloc((size_t)most * sizeof *q);
-    tb_distance_result* out = malloc((size_t)most * sizeof *out);
-    if (!q || !out) die(w, "out of memory");
+    const shape** pick = malloc(2 * (size_t)most * sizeof *pick);
+    tb_distance_result* out[METHODS];
+    for (int m = 0; m < METHODS; m++) out[m] = malloc((size_t)most * sizeof *out[m]);
+    if (!q || !pick || !out[EPA] || !out[MPR]) die(w, "out of memory");
     const char* sets[3] = { "apart", "overlapping", "mixed" };
-    printf("set,queries,median_ms,mqueries_per_s,overlapping_share\n");
+    printf("set,queries,median_ms,mqueries_per_s,overlapping_share,method,depth_pairs,"
+           "depth_err_median,depth_err_p99,depth_over_1pct,normal_deg_median,normal_deg_p99\n");
     for (int set = 0; set < 3; set++) {
         for (uint32_t k = 0; k < count; k++) {
-            fill(q, sizes[k], shapes, set == 0 ? 0 : (set == 1 ? 1 : 2));
-            if (tb_world_query_distances(w, q, sizes[k], out)) die(w, "query");  /* warm */
-            double ms[MAX_REPS];
-            for (uint32_t r = 0; r < reps; r++) {
-                double t0 = now_ms();
-                if (tb_world_query_distances(w, q, sizes[k], out)) die(w, "query");
-                ms[r] = now_ms() - t0;
+            uint32_t n = sizes[k];
+            fill(q, pick, n, shapes, set);
+            if (set == 0) {
+                print_line(sets[set], n, time_queries(w, q, n, reps, out[EPA]), out[EPA], "-",
+                           NULL);
+                continue;
             }
-            qsort(ms, reps, sizeof *ms, by_value);
-            uint32_t overlapping = 0;
-            for (uint32_t i = 0; i < sizes[k]; i++) overlapping += out[i].distance < 0;
-            printf("%s,%u,%.3f,%.2f,%.3f\n", sets[set], sizes[k], ms[reps / 2],
-                   sizes[k] / ms[reps / 2] / 1e3, (double)overlapping / sizes[k]);
+            double ms[METHODS] = { 0, 0 };
+            for (int m = 0; m < METHODS; m++) {
+                for (uint32_t i = 0; i < n; i++) q[i].penetration = method_enum[m];
+                if (asked[m]) ms[m] = time_queries(w, q, n, reps, out[m]);
+                else if (tb_world_query_distances(w, q, n, out[m])) die(w, "query");
+            }
+            depths d[METHODS];
+            measure_depths(q, pick, n, out, d);
+            for (int m = 0; m < METHODS; m++)
+                if (asked[m]) print_line(sets[set], n, ms[m], out[m], method_name[m], &d[m]);
         }
     }
     free(q);
-    free(out);
+    free(pick);
+    for (int m = 0; m < METHODS; m++) free(out[m]);
     tb_world_destroy(w);
     return 0;
 }
