@@ -20,6 +20,7 @@
 #define NP_GJK_OVERLAP 1u
 #define NP_GJK_LIMIT 2u
 #define NP_GJK_STALLS 3u
+#define NP_GJK_LOOSE 1.0e-5   // relative gap still taken as converged at the limit
 
 struct np_simplex {
     vec3 w[4];      // Minkowski points a - b
@@ -48,10 +49,40 @@ np_simplex np_simplex_pick(np_simplex s, uint i, uint j, uint k, uint n)
     return t;
 }
 
+// v less its part along the unit vector u, when u is one (a zero u removes nothing).
+vec3 np_reject(vec3 v, vec3 u)
+{
+    return v - u * dot(v, u);
+}
+
+vec3 np_unit_or_zero(vec3 e)
+{
+    float ee = dot(e, e);
+    return ee > 0.0 ? e * inversesqrt(ee) : vec3(0.0);
+}
+
+// The simplex's closest point to the origin: the weighted sum of its vertices, made
+// orthogonal to its edges again. The sum of vertices far from the origin carries their
+// rounding (float's epsilon times |w|) in every direction; left in, the part along the
+// simplex tilts the direction of v by up to epsilon |w| / |v|, and with it the normal and
+// the next support points, which a long face turns into a distance error of that tilt times
+// its length. Removed against an orthonormal basis of the edges, twice (once more takes out
+// what the first pass rounded), only the error across the simplex stays: the distance's own.
 vec3 np_simplex_point(np_simplex s)
 {
     vec3 v = vec3(0.0);
     for (uint m = 0u; m < s.n; m++) v += s.lambda[m] * s.w[m];
+    if (s.n < 2u || s.n > 3u) return v;
+    vec3 e1 = s.w[1] - s.w[0];
+    vec3 e2 = s.n == 3u ? s.w[2] - s.w[0] : vec3(0.0);
+    if (dot(e2, e2) > dot(e1, e1)) {
+        vec3 t = e1;
+        e1 = e2;
+        e2 = t;
+    }
+    vec3 u1 = np_unit_or_zero(e1);
+    vec3 u2 = np_unit_or_zero(np_reject(np_reject(e2, u1), u1));
+    for (uint pass = 0u; pass < 2u; pass++) v = np_reject(np_reject(v, u1), u2);
     return v;
 }
 
@@ -73,7 +104,7 @@ np_simplex np_sv_segment(np_simplex s)
     float c0 = p[k] - s.w[1][k];    // w0's weight times mu
     float c1 = s.w[0][k] - p[k];    // w1's
     if (np_same_sign(mu, c0) && np_same_sign(mu, c1)) {
-        s.lambda = vec4(c0 / mu, c1 / mu, 0.0, 0.0);
+        s.lambda = vec4(c0, c1, 0.0, 0.0) / (c0 + c1);
         return s;
     }
     // Beyond an end: that end alone.
@@ -108,7 +139,9 @@ np_simplex np_sv_triangle(np_simplex s)
     float mu = np_area2(q0, q1, q2);
     vec3 c = vec3(np_area2(pp, q1, q2), np_area2(q0, pp, q2), np_area2(q0, q1, pp));
     if (np_same_sign(mu, c.x) && np_same_sign(mu, c.y) && np_same_sign(mu, c.z)) {
-        s.lambda = vec4(c / mu, 0.0);
+        // Over their own sum, not mu: the areas round with the vertices' size, and for a
+        // sliver far from the origin weights that do not sum to one scale v with them.
+        s.lambda = vec4(c / (c.x + c.y + c.z), 0.0);
         return s;
     }
     np_simplex best = s;
@@ -174,6 +207,8 @@ struct np_gjk_result {
     uint status;        // NP_GJK_*
     float distance;     // between the cores (0 when they overlap)
     vec3 pa, pb;        // closest points of the cores, world space
+    vec3 v;             // pa - pb as the simplex gives it: its direction is better than
+                        // that of the points' difference, rounded at the points' size
     np_simplex simplex; // the last simplex (EPA starts from it)
     uint iterations;
 };
@@ -189,15 +224,27 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
     r.status = NP_GJK_LIMIT;
     float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
     np_simplex best = s;
-    vec3 best_v = vec3(3.0e18);
+    float best_gap = 3.0e38;
+    float least = 3.0e38;   // the smallest |v|^2 so far
     uint stalls = 0u;
     uint it;
     for (it = 0u; it < NP_GJK_ITERATIONS; it++) {
-        vec3 a = np_core_support(A, -v);
-        vec3 b = np_core_support(B, v);
+        // Supports along the unit v: the shapes' tests of a direction's size (a rim's
+        // direction near a cylinder's axis) are then relative, however short v has become.
+        float vv = dot(v, v);
+        vec3 u = v * inversesqrt(vv);
+        vec3 a = np_core_support(A, -u);
+        vec3 b = np_core_support(B, u);
         vec3 w = a - b;
         scale = max(scale, dot(w, w));
-        float vv = dot(v, v);
+        // |v| bounds the distance from above and v.w / |v| from below: their gap is how far
+        // this simplex's answer (distance and direction) can be off. The simplex with the
+        // smallest gap is the answer, whichever way the search ends.
+        float gap = (vv - dot(v, w)) * inversesqrt(vv);
+        if (s.n > 0u && gap < best_gap) {
+            best_gap = gap;
+            best = s;
+        }
         // No closer than v along v: v is the distance (relative tolerance of float).
         if (s.n > 0u && vv - dot(v, w) <= 1.0e-6 * vv) {
             r.status = NP_GJK_SEPARATED;
@@ -205,11 +252,12 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
         }
         bool repeated = false;
         for (uint m = 0u; m < s.n; m++) repeated = repeated || s.w[m] == w;
-        if (repeated) {
+        // The distance never grows in exact arithmetic: steps that do not shrink it are
+        // float noise in the sub-algorithm, and NP_GJK_STALLS of them in a row end the search.
+        if (repeated || stalls >= NP_GJK_STALLS) {
             r.status = NP_GJK_SEPARATED;
             break;
         }
-        np_simplex before = s;
         s.w[s.n] = w;
         s.a[s.n] = a;
         s.b[s.n] = b;
@@ -218,38 +266,40 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
         vec3 next = np_simplex_point(s);
         if (s.n == 4u || dot(next, next) <= 1.0e-14 * scale) {
             r.status = NP_GJK_OVERLAP;
-            v = next;
             it++;
             break;
         }
-        // The distance never grows in exact arithmetic: a step that does not shrink it is
-        // float noise in the sub-algorithm. The best simplex so far is kept; the search goes
-        // on from the new one, and ends after NP_GJK_STALLS such steps in a row.
-        if (dot(next, next) >= dot(best_v, best_v) && before.n > 0u) {
-            if (++stalls >= NP_GJK_STALLS) {
-                r.status = NP_GJK_SEPARATED;
-                break;
-            }
-        } else {
-            stalls = 0u;
-            best = s;
-            best_v = next;
-        }
+        stalls = dot(next, next) >= least ? stalls + 1u : 0u;
+        least = min(least, dot(next, next));
         v = next;
     }
     if (r.status != NP_GJK_OVERLAP && best.n > 0u) s = best;
+    // Curved against curved (a rim on a cone's side) converges slowly: out of iterations
+    // with the gap within NP_GJK_LOOSE of the distance, the answer is as good as separated.
+    if (r.status == NP_GJK_LIMIT && best_gap <= NP_GJK_LOOSE * length(np_simplex_point(s)))
+        r.status = NP_GJK_SEPARATED;
+    // v's direction from np_simplex_point, its length from the weighted sum itself, a point
+    // of the simplex: never short of the distance, where a sliver's edge basis might tilt
+    // out of its plane and cut v short.
+    vec3 last = np_simplex_point(s);
+    vec3 sum = vec3(0.0);
+    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.w[m];
+    if (dot(last, last) > 0.0) last *= sqrt(dot(sum, sum) / dot(last, last));
     // Stopped with the origin within float noise of the simplex (no support point is new,
     // or none gets closer): the cores touch or overlap, and EPA decides which.
-    vec3 last = np_simplex_point(s);
     if (r.status != NP_GJK_OVERLAP && dot(last, last) <= 1.0e-10 * scale) r.status = NP_GJK_OVERLAP;
     r.iterations = it;
     r.simplex = s;
     r.pa = vec3(0.0);
-    r.pb = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) {
-        r.pa += s.lambda[m] * s.a[m];
-        r.pb += s.lambda[m] * s.b[m];
-    }
+    for (uint m = 0u; m < s.n; m++) r.pa += s.lambda[m] * s.a[m];
+    // b's point is a's less v, not b's own weighted sum: the weights carry the rounding of
+    // the sub-algorithm along the simplex, which moves the two sums apart across v (it
+    // tilts their difference; see np_simplex_point), while v is clean of it. Precise, so
+    // that no compiler folds pa - pb back into v: the distance and direction taken from
+    // the points must be the points' own.
+    precise vec3 pb = r.pa - last;
+    r.pb = pb;
+    r.v = last;
     r.distance = r.status == NP_GJK_OVERLAP ? 0.0 : length(r.pa - r.pb);
     return r;
 }
