@@ -20,6 +20,8 @@
 #define NP_GJK_OVERLAP 1u
 #define NP_GJK_LIMIT 2u
 #define NP_GJK_STALLS 3u
+#define NP_GJK_FAR 4u         // status: a support plane shows the cores farther than asked
+#define NP_GJK_TOLERANCE 1.0e-6   // queries: converged when |v|^2 - v.w is within it of |v|^2
 #define NP_GJK_LOOSE 1.0e-5   // relative gap still taken as converged at the limit
 
 struct np_simplex {
@@ -213,13 +215,19 @@ struct np_gjk_result {
     uint iterations;
 };
 
-np_gjk_result np_gjk(np_convex A, np_convex B)
+// GJK from the direction `start` (pa - pb's last known direction, or zero: the centres'),
+// converged when |v|^2 - v.w <= tolerance |v|^2. With far >= 0 it gives up as soon as a
+// support plane shows the cores more than `far` apart (status NP_GJK_FAR, distance that
+// lower bound, v the separating direction, no points): contacts ask only whether the shapes
+// come within their margin, and for most of the broadphase's pairs the first support
+// plane, along last step's direction, already says no.
+np_gjk_result np_gjk_from(np_convex A, np_convex B, vec3 start, float far, float tolerance)
 {
     np_gjk_result r;
     np_simplex s;
     s.n = 0u;
     s.lambda = vec4(0.0);
-    vec3 v = np_core_centre(A) - np_core_centre(B);
+    vec3 v = dot(start, start) > 0.0 ? start : np_core_centre(A) - np_core_centre(B);
     if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
     r.status = NP_GJK_LIMIT;
     float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
@@ -236,6 +244,15 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
         vec3 a = np_core_support(A, -u);
         vec3 b = np_core_support(B, u);
         vec3 w = a - b;
+        if (far >= 0.0 && dot(u, w) > far) {
+            r.status = NP_GJK_FAR;
+            r.distance = dot(u, w);
+            r.v = v;
+            r.pa = r.pb = vec3(0.0);
+            r.simplex = s;
+            r.iterations = it + 1u;
+            return r;
+        }
         scale = max(scale, dot(w, w));
         // |v| bounds the distance from above and v.w / |v| from below: their gap is how far
         // this simplex's answer (distance and direction) can be off. The simplex with the
@@ -245,8 +262,8 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
             best_gap = gap;
             best = s;
         }
-        // No closer than v along v: v is the distance (relative tolerance of float).
-        if (s.n > 0u && vv - dot(v, w) <= 1.0e-6 * vv) {
+        // No closer than v along v: v is the distance (within the tolerance).
+        if (s.n > 0u && vv - dot(v, w) <= tolerance * vv) {
             r.status = NP_GJK_SEPARATED;
             break;
         }
@@ -302,6 +319,12 @@ np_gjk_result np_gjk(np_convex A, np_convex B)
     r.v = last;
     r.distance = r.status == NP_GJK_OVERLAP ? 0.0 : length(r.pa - r.pb);
     return r;
+}
+
+// The distance query's GJK: from the centres, to float's tolerance, to the end.
+np_gjk_result np_gjk(np_convex A, np_convex B)
+{
+    return np_gjk_from(A, B, vec3(0.0), -1.0, NP_GJK_TOLERANCE);
 }
 
 #endif
