@@ -267,6 +267,36 @@ static tb_result choose_device(tb_gpu* gpu, const char* choice)
     return TB_OK;
 }
 
+/* Whether the device offers `name`. */
+static int has_device_extension(VkPhysicalDevice pd, const char* name)
+{
+    VkExtensionProperties props[512];
+    uint32_t count = 512;
+    VkResult vr = vkEnumerateDeviceExtensionProperties(pd, NULL, &count, props);
+    if (vr != VK_SUCCESS && vr != VK_INCOMPLETE) return 0;
+    for (uint32_t i = 0; i < count; i++)
+        if (!strcmp(props[i].extensionName, name)) return 1;
+    return 0;
+}
+
+/* TUMBLE_KERNEL_STATS: a developer's view of what the compiler made of each kernel. */
+static int wants_kernel_stats(VkPhysicalDevice pd)
+{
+    const char* env = getenv("TUMBLE_KERNEL_STATS");
+    return env && *env && strcmp(env, "0") &&
+           has_device_extension(pd, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+}
+
+static void load_kernel_stats(tb_gpu* gpu)
+{
+    gpu->executable_properties = (PFN_vkGetPipelineExecutablePropertiesKHR)
+        vkGetDeviceProcAddr(gpu->device, "vkGetPipelineExecutablePropertiesKHR");
+    gpu->executable_statistics = (PFN_vkGetPipelineExecutableStatisticsKHR)
+        vkGetDeviceProcAddr(gpu->device, "vkGetPipelineExecutableStatisticsKHR");
+    if (!gpu->executable_properties || !gpu->executable_statistics)
+        gpu->executable_properties = NULL;
+}
+
 static tb_result create_device(tb_gpu* gpu, const tb_gpu_options* options)
 {
     float priority = 1.0f;
@@ -279,15 +309,25 @@ static tb_result create_device(tb_gpu* gpu, const tb_gpu_options* options)
         .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
         .bufferDeviceAddress = VK_TRUE,
     };
+    VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable = {
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR,
+        .pNext = &features12, .pipelineExecutableInfo = VK_TRUE,
+    };
+    const char* extensions[TB_MAX_EXTRA_EXTENSIONS + 1];
+    uint32_t count = options->device_extension_count;
+    for (uint32_t i = 0; i < count; i++) extensions[i] = options->device_extensions[i];
+    int stats = wants_kernel_stats(gpu->physical);
+    if (stats) extensions[count++] = VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME;
     VkDeviceCreateInfo info = {
-        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, .pNext = &features12,
+        .sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
+        .pNext = stats ? (void*)&executable : (void*)&features12,
         .queueCreateInfoCount = 1, .pQueueCreateInfos = &queue,
-        .enabledExtensionCount = options->device_extension_count,
-        .ppEnabledExtensionNames = options->device_extensions,
+        .enabledExtensionCount = count, .ppEnabledExtensionNames = extensions,
     };
     tb_result r = tb_vk_check(gpu->diag, vkCreateDevice(gpu->physical, &info, NULL, &gpu->device),
                               "vkCreateDevice");
     if (r) return r;
+    if (stats) load_kernel_stats(gpu);
     vkGetDeviceQueue(gpu->device, gpu->queue_family, 0, &gpu->queue);
     VkCommandPoolCreateInfo pool = {
         .sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO,
@@ -311,6 +351,9 @@ tb_result tb_gpu_create(tb_gpu* gpu, const tb_gpu_options* options, tb_diag* dia
     if (choice && !*choice) choice = NULL;
     if (options->instance_extension_count > TB_MAX_EXTRA_EXTENSIONS)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "at most %d extra instance extensions",
+                       TB_MAX_EXTRA_EXTENSIONS);
+    if (options->device_extension_count > TB_MAX_EXTRA_EXTENSIONS)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "at most %d extra device extensions",
                        TB_MAX_EXTRA_EXTENSIONS);
     tb_result r = create_instance(gpu, options);
     if (!r) r = choose_device(gpu, choice);

@@ -24,6 +24,10 @@ typedef struct tb_gpu {
     VkFence fence;                  ///< one submission in flight at a time
     PFN_vkCmdBeginDebugUtilsLabelEXT begin_label; ///< NULL without debug utils
     PFN_vkCmdEndDebugUtilsLabelEXT end_label;
+    /// TUMBLE_KERNEL_STATS set and VK_KHR_pipeline_executable_properties there: each
+    /// pipeline's compiler statistics (registers, local memory, ...) go to stderr.
+    PFN_vkGetPipelineExecutablePropertiesKHR executable_properties;
+    PFN_vkGetPipelineExecutableStatisticsKHR executable_statistics;
     tb_diag* diag;                  ///< where messages go (the world's)
 } tb_gpu;
 

@@ -256,6 +256,42 @@ void tb_pipeline_destroy_slots(tb_pipelines* p, const tb_pipeline_slot* slots, s
     }
 }
 
+/* One line per executable of the pipeline: its name and the compiler's statistics. */
+static void print_kernel_stats(const tb_gpu* gpu, const char* name, VkPipeline pipeline)
+{
+    VkPipelineInfoKHR info = { .sType = VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR, .pipeline = pipeline };
+    VkPipelineExecutablePropertiesKHR props[4];
+    uint32_t count = 4;
+    for (uint32_t i = 0; i < count; i++)
+        props[i] = (VkPipelineExecutablePropertiesKHR){
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR };
+    if (gpu->executable_properties(gpu->device, &info, &count, props) < 0) return;
+    for (uint32_t e = 0; e < count; e++) {
+        VkPipelineExecutableInfoKHR exec = {
+            .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR, .pipeline = pipeline,
+            .executableIndex = e };
+        VkPipelineExecutableStatisticKHR stats[32];
+        uint32_t n = 32;
+        for (uint32_t i = 0; i < n; i++)
+            stats[i] = (VkPipelineExecutableStatisticKHR){
+                .sType = VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR };
+        if (gpu->executable_statistics(gpu->device, &exec, &n, stats) < 0) continue;
+        fprintf(stderr, "kernel %s [%s]:", name, props[e].name);
+        for (uint32_t i = 0; i < n; i++) {
+            const VkPipelineExecutableStatisticKHR* s = &stats[i];
+            if (s->format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_FLOAT64_KHR)
+                fprintf(stderr, " %s=%g", s->name, s->value.f64);
+            else if (s->format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_INT64_KHR)
+                fprintf(stderr, " %s=%lld", s->name, (long long)s->value.i64);
+            else if (s->format == VK_PIPELINE_EXECUTABLE_STATISTIC_FORMAT_UINT64_KHR)
+                fprintf(stderr, " %s=%llu", s->name, (unsigned long long)s->value.u64);
+            else
+                fprintf(stderr, " %s=%s", s->name, s->value.b32 ? "yes" : "no");
+        }
+        fprintf(stderr, "\n");
+    }
+}
+
 tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint32_t* code,
                                   size_t size, uint32_t workgroup_size, VkPipeline* out)
 {
@@ -284,9 +320,12 @@ tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint3
         },
         .layout = p->layout,
     };
+    if (p->gpu->executable_properties)
+        info.flags |= VK_PIPELINE_CREATE_CAPTURE_STATISTICS_BIT_KHR;
     r = tb_vk_check(diag, vkCreateComputePipelines(p->gpu->device, p->cache, 1, &info, NULL, out),
                     name);
     vkDestroyShaderModule(p->gpu->device, module, NULL);
+    if (!r && p->gpu->executable_properties) print_kernel_stats(p->gpu, name, *out);
     return r;
 }
 
