@@ -8,7 +8,11 @@
 // weights of the origin's projection give the witness points.
 //
 // The polytope lives in private arrays of fixed size; running out of room ends the
-// expansion with the best face so far.
+// expansion with the best face so far. The faces are kept packed (those a new vertex sees
+// are dropped as it comes, their slots given to the new ones): a closed polytope of V
+// vertices has 2V - 4 faces, so NP_EPA_FACES holds every face NP_EPA_VERTICES can make, and
+// a curved core (a cylinder's side, a cone's) that takes all the vertices to close in on its
+// depth does not run out of faces first.
 #ifndef TB_NP_EPA_GLSL
 #define TB_NP_EPA_GLSL
 
@@ -16,6 +20,7 @@
 #define NP_EPA_FACES 64u
 #define NP_EPA_EDGES 32u
 #define NP_EPA_ITERATIONS 32u
+#define NP_EPA_FOLDS 16u         // kept faces one fan may take back (np_epa_expand)
 
 struct np_epa_result {
     bool found;     // a depth was found; else, when the normal is not zero, the cores touch
@@ -29,7 +34,6 @@ vec3 np_epa_a[NP_EPA_VERTICES];
 vec3 np_epa_b[NP_EPA_VERTICES];
 uvec3 np_epa_face[NP_EPA_FACES];
 vec4 np_epa_plane[NP_EPA_FACES];   // xyz outward unit normal, w distance from the origin
-bool np_epa_alive[NP_EPA_FACES];
 uint np_epa_vertices;
 uint np_epa_faces;
 
@@ -54,7 +58,6 @@ bool np_epa_add_face(uint i, uint j, uint k)
     uint f = np_epa_faces++;
     np_epa_face[f] = uvec3(i, j, k);
     np_epa_plane[f] = vec4(n, dot(n, np_epa_w[i]));
-    np_epa_alive[f] = true;
     return true;
 }
 
@@ -117,38 +120,84 @@ bool np_epa_add_edge(uint i, uint j)
     return true;
 }
 
-// Replaces the faces vertex m sees by a fan from their horizon to m.
-bool np_epa_expand(uint m)
+// The face (of the first `count`) across the edge from i to j: the one that runs from j to i.
+uint np_epa_across(uint i, uint j, uint count)
+{
+    for (uint f = 0u; f < count; f++) {
+        uvec3 v = np_epa_face[f];
+        if (uvec2(v.x, v.y) == uvec2(j, i) || uvec2(v.y, v.z) == uvec2(j, i) ||
+            uvec2(v.z, v.x) == uvec2(j, i)) return f;
+    }
+    return NP_NONE;
+}
+
+// Replaces the faces vertex m sees by a fan from their horizon to m. The faces it does not
+// see move down over the slots of those it does. False when the room runs out or the fan
+// cannot be mended (below): the polytope is then broken, and the caller answers from the
+// face it had.
+//
+// A face is seen when m lies more than `eps` (float noise of the polytope's size) in front
+// of it. A flat side of a core (a cylinder's cap, a box's face) gives many vertices in one
+// plane, and a new one in that plane is in front of some of its faces and behind others by
+// rounding alone: seen by every face it is in front of, m would fold faces of that plane
+// over each other (one wound the wrong way round: an inward normal, a distance below zero,
+// which the nearest face would then be). Faces within eps of m stay, unless the fan then
+// shows a fold: a new face with the origin behind it (no face of a polytope that holds the
+// origin has one) or of no area, m lying in the plane of the kept face across that horizon
+// edge. That face goes too, its other two edges join the horizon, and the fan is made
+// again, up to NP_EPA_FOLDS times (a cone's apex region may take several).
+bool np_epa_expand(uint m, float eps)
 {
     np_epa_edges = 0u;
     vec3 w = np_epa_w[m];
+    uint kept = 0u;
     for (uint f = 0u; f < np_epa_faces; f++) {
-        if (!np_epa_alive[f] || dot(np_epa_plane[f].xyz, w) - np_epa_plane[f].w <= 0.0) continue;
-        np_epa_alive[f] = false;
-        uvec3 v = np_epa_face[f];
+        if (dot(np_epa_plane[f].xyz, w) - np_epa_plane[f].w > eps) {
+            uvec3 v = np_epa_face[f];
+            if (!np_epa_add_edge(v.x, v.y) || !np_epa_add_edge(v.y, v.z) ||
+                !np_epa_add_edge(v.z, v.x)) return false;
+            continue;
+        }
+        np_epa_face[kept] = np_epa_face[f];
+        np_epa_plane[kept] = np_epa_plane[f];
+        kept++;
+    }
+    for (uint folds = 0u; folds <= NP_EPA_FOLDS; folds++) {
+        np_epa_faces = kept;
+        uint fold = NP_NONE;
+        for (uint e = 0u; e < np_epa_edges && fold == NP_NONE; e++) {
+            if (np_epa_faces >= NP_EPA_FACES) return false;
+            if (!np_epa_add_face(np_epa_edge[e].x, np_epa_edge[e].y, m) ||
+                np_epa_plane[np_epa_faces - 1u].w < -eps) fold = e;
+        }
+        if (fold == NP_NONE) return true;
+        uvec2 edge = np_epa_edge[fold];
+        uint g = np_epa_across(edge.x, edge.y, kept);
+        if (g == NP_NONE || folds == NP_EPA_FOLDS) return false;
+        uvec3 v = np_epa_face[g];
+        kept--;
+        np_epa_face[g] = np_epa_face[kept];
+        np_epa_plane[g] = np_epa_plane[kept];
         if (!np_epa_add_edge(v.x, v.y) || !np_epa_add_edge(v.y, v.z) ||
             !np_epa_add_edge(v.z, v.x)) return false;
     }
-    for (uint e = 0u; e < np_epa_edges; e++)
-        if (!np_epa_add_face(np_epa_edge[e].x, np_epa_edge[e].y, m)) return false;
-    return true;
+    return false;
 }
 
 uint np_epa_closest_face()
 {
     uint best = NP_NONE;
     for (uint f = 0u; f < np_epa_faces; f++)
-        if (np_epa_alive[f] && (best == NP_NONE || np_epa_plane[f].w < np_epa_plane[best].w))
-            best = f;
+        if (best == NP_NONE || np_epa_plane[f].w < np_epa_plane[best].w) best = f;
     return best;
 }
 
-np_epa_result np_epa_answer(uint f)
+// The answer of face v (vertex indices) with the given plane.
+np_epa_result np_epa_answer(uvec3 v, vec4 plane)
 {
     np_epa_result r;
-    uvec3 v = np_epa_face[f];
-    vec3 n = np_epa_plane[f].xyz;
-    vec3 p = n * np_epa_plane[f].w;
+    vec3 n = plane.xyz;
+    vec3 p = n * plane.w;
     vec3 w0 = np_epa_w[v.x], w1 = np_epa_w[v.y], w2 = np_epa_w[v.z];
     // Barycentric weights of p from the sub-triangles' areas along n.
     vec3 l = vec3(dot(cross(w1 - p, w2 - p), n), dot(cross(w2 - p, w0 - p), n),
@@ -157,7 +206,7 @@ np_epa_result np_epa_answer(uint f)
     l = sum != 0.0 ? l / sum : vec3(1.0 / 3.0);
     r.found = true;
     r.normal = n;
-    r.depth = max(np_epa_plane[f].w, 0.0);
+    r.depth = max(plane.w, 0.0);
     r.pa = l.x * np_epa_a[v.x] + l.y * np_epa_a[v.y] + l.z * np_epa_a[v.z];
     r.pb = l.x * np_epa_b[v.x] + l.y * np_epa_b[v.y] + l.z * np_epa_b[v.z];
     return r;
@@ -174,23 +223,26 @@ np_epa_result np_epa(np_convex A, np_convex B, np_simplex s)
     float size = 0.0;
     for (uint m = 0u; m < 4u; m++) size = max(size, length(np_epa_w[m]));
     uint best = np_epa_closest_face();
-    for (uint it = 0u; it < NP_EPA_ITERATIONS && best != NP_NONE; it++) {
-        vec4 plane = np_epa_plane[best];
+    if (best == NP_NONE) return r;
+    // The nearest face, kept aside: a failed expansion may overwrite its slot.
+    uvec3 face = np_epa_face[best];
+    vec4 plane = np_epa_plane[best];
+    for (uint it = 0u; it < NP_EPA_ITERATIONS; it++) {
         if (np_epa_vertices >= NP_EPA_VERTICES) break;
         uint m = np_epa_add_vertex(A, B, plane.xyz);
         float gain = dot(plane.xyz, np_epa_w[m]) - plane.w;
         if (gain <= 1.0e-5 * size + 1.0e-4 * abs(plane.w)) break;
-        if (!np_epa_expand(m)) break;
-        uint next = np_epa_closest_face();
-        if (next == NP_NONE) break;
-        best = next;
+        if (!np_epa_expand(m, 1.0e-6 * size)) break;
+        best = np_epa_closest_face();
+        if (best == NP_NONE) break;
+        face = np_epa_face[best];
+        plane = np_epa_plane[best];
     }
-    if (best == NP_NONE) return r;
     // A polytope whose nearest face does not hold the origin in front of it (cores that only
     // touch, within float noise of each other) has no depth to give: not found, but its
     // nearest face's normal is still the touching direction.
-    r = np_epa_answer(best);
-    r.found = np_epa_plane[best].w > 1.0e-6 * size;
+    r = np_epa_answer(face, plane);
+    r.found = plane.w > 1.0e-6 * size;
     return r;
 }
 

@@ -59,8 +59,10 @@ void main()
     vec3 n = vec3(0.0, 1.0, 0.0), pa = g.pa, pb = g.pb;
     float distance;
     uint status = g.status;
-    if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
-        n = (g.pb - g.pa) / g.distance;
+    if (g.status != NP_GJK_OVERLAP && g.distance > 0.0 && dot(g.v, g.v) > 0.0) {
+        // Along -v, not the points' difference: v comes off the simplex clean of the
+        // rounding at the points' size (np_gjk_result), which tilts their difference.
+        n = -normalize(g.v);
         distance = g.distance;
     } else {
         np_epa_result e = penetration(A, B, g.simplex, floatBitsToUint(q.position_a.w));
