@@ -215,19 +215,18 @@ struct np_gjk_result {
     uint iterations;
 };
 
-// GJK from the direction `start` (pa - pb's last known direction, or zero: the centres'),
-// converged when |v|^2 - v.w <= tolerance |v|^2. With far >= 0 it gives up as soon as a
+// GJK converged when |v|^2 - v.w <= tolerance |v|^2. With far >= 0 it gives up as soon as a
 // support plane shows the cores more than `far` apart (status NP_GJK_FAR, distance that
 // lower bound, v the separating direction, no points): contacts ask only whether the shapes
-// come within their margin, and for most of the broadphase's pairs the first support
-// plane, along last step's direction, already says no.
-np_gjk_result np_gjk_from(np_convex A, np_convex B, vec3 start, float far, float tolerance)
+// come within their margin, and for many of the broadphase's pairs an early support plane
+// already says no.
+np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance)
 {
     np_gjk_result r;
     np_simplex s;
     s.n = 0u;
     s.lambda = vec4(0.0);
-    vec3 v = dot(start, start) > 0.0 ? start : np_core_centre(A) - np_core_centre(B);
+    vec3 v = np_core_centre(A) - np_core_centre(B);
     if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
     r.status = NP_GJK_LIMIT;
     float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
@@ -324,7 +323,7 @@ np_gjk_result np_gjk_from(np_convex A, np_convex B, vec3 start, float far, float
 // The distance query's GJK: from the centres, to float's tolerance, to the end.
 np_gjk_result np_gjk(np_convex A, np_convex B)
 {
-    return np_gjk_from(A, B, vec3(0.0), -1.0, NP_GJK_TOLERANCE);
+    return np_gjk_within(A, B, -1.0, NP_GJK_TOLERANCE);
 }
 
 #endif

@@ -397,28 +397,6 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
     return 1u;
 }
 
-// ---- last step's direction of a pair ------------------------------------------------------
-// A round pair's manifold keeps GJK's direction for the next step in axis.x (octahedral,
-// two snorm16: about 1e-4 rad), axis.y 1 where it holds one.
-
-uvec2 np_pack_direction(vec3 d)
-{
-    if (!(dot(d, d) > 0.0)) return uvec2(0u);
-    d /= abs(d.x) + abs(d.y) + abs(d.z);
-    vec2 e = d.z >= 0.0 ? d.xy : (1.0 - abs(d.yx)) * vec2(d.x >= 0.0 ? 1.0 : -1.0,
-                                                          d.y >= 0.0 ? 1.0 : -1.0);
-    return uvec2(packSnorm2x16(e), 1u);
-}
-
-vec3 np_unpack_direction(uvec2 packed)
-{
-    if (packed.y != 1u) return vec3(0.0);
-    vec2 e = unpackSnorm2x16(packed.x);
-    vec3 d = vec3(e, 1.0 - abs(e.x) - abs(e.y));
-    if (d.z < 0.0) d.xy = (1.0 - abs(d.yx)) * vec2(d.x >= 0.0 ? 1.0 : -1.0, d.y >= 0.0 ? 1.0 : -1.0);
-    return normalize(d);
-}
-
 // ---- the pairs -----------------------------------------------------------------------------
 
 // How far the cores overlap along the unit axis n (A's farthest point along n beyond B's
@@ -448,28 +426,22 @@ void np_keep_shallower_axis(np_convex A, np_convex B, inout vec3 n, inout vec3 p
 }
 
 // Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
-// overlap. False when they are farther apart than the margin (or EPA found nothing).
-// `direction` comes in as last step's normal of the pair (zero: none) and GJK starts from
-// it, so a resting pair converges in a step or two and a pair still apart along it is
-// rejected by the first support plane; it goes out as this step's.
-bool np_round_normal(np_convex world_a, np_convex world_b, float margin, inout vec3 direction,
-                     out vec3 n, out vec3 pa, out vec3 pb)
+// overlap. False when they are farther apart than the margin (or EPA found nothing); GJK
+// gives up on a pair as soon as a support plane shows that.
+bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
+                     out vec3 pa, out vec3 pb)
 {
     vec3 o = np_core_centre(world_a);
     np_convex A = np_convex_moved(world_a, o), B = np_convex_moved(world_b, o);
-    np_gjk_result g = np_gjk_from(A, B, -direction, A.radius + B.radius + margin,
-                                  NP_GJK_CONTACT_TOLERANCE);
+    np_gjk_result g = np_gjk_within(A, B, A.radius + B.radius + margin,
+                                    NP_GJK_CONTACT_TOLERANCE);
     n = vec3(0.0, 1.0, 0.0);
     pa = g.pa;
     pb = g.pb;
-    if (g.status == NP_GJK_FAR) {
-        direction = -normalize(g.v);
-        return false;
-    }
+    if (g.status == NP_GJK_FAR) return false;
     if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
-        direction = -normalize(g.v);
         if (g.distance - A.radius - B.radius >= margin) return false;
-        n = direction;
+        n = -normalize(g.v);
     } else {
         np_epa_result e = np_epa(A, B, g.simplex);
         // Cores that only touch (no depth to find): along EPA's nearest face, or else
@@ -481,7 +453,6 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, inout v
         pa = along_gap ? g.pa : e.pa;
         pb = along_gap ? g.pb : e.pb;
         np_keep_shallower_axis(A, B, n, pa, pb);
-        direction = n;
     }
     pa += o + n * A.radius;
     pb += o - n * B.radius;
@@ -495,8 +466,7 @@ float np_bounding_radius(np_body b)
     return length(s.aabb_center.xyz) + length(s.aabb_half.xyz);
 }
 
-uint np_convex_round(np_target t, np_body a, np_body b, float margin, inout vec3 direction,
-                     out vec3 normal)
+uint np_convex_round(np_target t, np_body a, np_body b, float margin, out vec3 normal)
 {
     normal = vec3(0.0);
     // Most pairs the broadphase finds are apart by more than the margin: their bounding
@@ -506,7 +476,7 @@ uint np_convex_round(np_target t, np_body a, np_body b, float margin, inout vec3
     if (dot(between, between) > reach * reach) return 0u;
     np_convex A = np_convex_rounded(a), B = np_convex_rounded(b);
     vec3 n, pa, pb;
-    if (!np_round_normal(A, B, margin, direction, n, pa, pb)) return 0u;
+    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
     return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
 }
 
@@ -527,7 +497,7 @@ uint np_plane_round(np_target t, np_body plane, np_body b, float margin, out vec
 // behind the triangle gets nothing; a contact whose normal would not leave the front, or
 // that touches an inactive edge or corner, takes the face normal.
 uint np_triangle_round(np_target t, np_body mesh, np_triangle tri, np_body b, float margin,
-                       inout vec3 direction, out vec3 normal)
+                       out vec3 normal)
 {
     normal = vec3(0.0);
     if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
@@ -536,7 +506,7 @@ uint np_triangle_round(np_target t, np_body mesh, np_triangle tri, np_body b, fl
     float highest = dot(np_core_support(B, front) - tri.v0, front) + B.radius;
     if (highest < 0.0) return 0u;
     vec3 n, pa, pb;
-    if (!np_round_normal(A, B, margin, direction, n, pa, pb)) return 0u;
+    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
     uint feature;
     np_tri_closest(tri, pa, feature);
     bool face = dot(n, front) >= 0.9999;

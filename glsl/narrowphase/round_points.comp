@@ -30,10 +30,9 @@ uint round_points(uint p)
 {
     np_pair q = np_pair_load(p);
     if (!np_is_round(q.second.type)) return 0u;
-    // As contacts.comp: the block solver's stiffness of the pair carries over; so does
-    // GJK's direction (round.glsl).
-    uvec4 before = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis : uvec4(0u);
-    vec3 direction = np_unpack_direction(before.xy);
+    // As contacts.comp: the block solver's stiffness of the pair carries over.
+    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
+    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
     vec3 normal = vec3(0.0);
     uint count;
     uint first = q.first.type;
@@ -41,11 +40,10 @@ uint round_points(uint p)
         count = np_plane_round(q.t, q.first, q.second, q.margin, normal);
     } else if (first == TB_GPU_SHAPE_MESH || first == TB_GPU_SHAPE_HEIGHTFIELD) {
         np_triangle tri = np_load_triangle(q.first, q.triangle, q.first.rot, q.first.pos);
-        count = np_triangle_round(q.t, q.first, tri, q.second, q.margin, direction, normal);
+        count = np_triangle_round(q.t, q.first, tri, q.second, q.margin, normal);
     } else {
-        count = np_convex_round(q.t, q.first, q.second, q.margin, direction, normal);
+        count = np_convex_round(q.t, q.first, q.second, q.margin, normal);
     }
-    manifolds[p].axis = uvec4(np_pack_direction(direction), 0u, before.w);
     np_pair_finish(q, count, normal);
     return count;
 }
