@@ -70,7 +70,7 @@ bool np_epa_start(np_convex A, np_convex B, np_simplex s)
     for (uint m = 0u; m < s.n; m++) {
         np_epa_w[m] = s.w[m];
         np_epa_a[m] = s.a[m];
-        np_epa_b[m] = s.b[m];
+        np_epa_b[m] = s.a[m] - s.w[m];
     }
     np_epa_vertices = s.n;
     const vec3 axes[6] = vec3[6](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0),

@@ -24,10 +24,11 @@
 #define NP_GJK_TOLERANCE 1.0e-6   // queries: converged when |v|^2 - v.w is within it of |v|^2
 #define NP_GJK_LOOSE 1.0e-5   // relative gap still taken as converged at the limit
 
+// B's support points are not kept: b = a - w wherever one is needed (EPA's start), so the
+// simplex the sub-algorithm copies about is a third smaller.
 struct np_simplex {
     vec3 w[4];      // Minkowski points a - b
     vec3 a[4];      // A's support points
-    vec3 b[4];      // B's support points
     vec4 lambda;    // barycentric weights of the closest point
     uint n;
 };
@@ -45,7 +46,6 @@ np_simplex np_simplex_pick(np_simplex s, uint i, uint j, uint k, uint n)
     for (uint m = 0u; m < n; m++) {
         t.w[m] = s.w[idx[m]];
         t.a[m] = s.a[idx[m]];
-        t.b[m] = s.b[idx[m]];
     }
     t.n = n;
     return t;
@@ -86,6 +86,21 @@ vec3 np_simplex_point(np_simplex s)
     vec3 u2 = np_unit_or_zero(np_reject(np_reject(e2, u1), u1));
     for (uint pass = 0u; pass < 2u; pass++) v = np_reject(np_reject(v, u1), u2);
     return v;
+}
+
+// The weighted sums of the simplex's w and of its a.
+vec3 np_simplex_sum(np_simplex s)
+{
+    vec3 sum = vec3(0.0);
+    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.w[m];
+    return sum;
+}
+
+vec3 np_simplex_a(np_simplex s)
+{
+    vec3 sum = vec3(0.0);
+    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.a[m];
+    return sum;
 }
 
 // Segment w0 w1: the origin's projection on the line, measured along the axis where the
@@ -230,7 +245,9 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
     if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
     r.status = NP_GJK_LIMIT;
     float scale = 0.0;   // the largest |w|^2 seen: the size the float noise scales with
-    np_simplex best = s;
+    // The best-bounded simplex's answer (not the simplex itself, which the loop would carry
+    // as a second copy): its point v, its weighted sum of w and of a.
+    vec3 best_v = vec3(0.0), best_sum = vec3(0.0), best_pa = vec3(0.0);
     float best_gap = 3.0e38;
     float least = 3.0e38;   // the smallest |v|^2 so far
     uint stalls = 0u;
@@ -259,7 +276,9 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
         float gap = (vv - dot(v, w)) * inversesqrt(vv);
         if (s.n > 0u && gap < best_gap) {
             best_gap = gap;
-            best = s;
+            best_v = v;
+            best_sum = np_simplex_sum(s);
+            best_pa = np_simplex_a(s);
         }
         // No closer than v along v: v is the distance (within the tolerance).
         if (s.n > 0u && vv - dot(v, w) <= tolerance * vv) {
@@ -276,7 +295,6 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
         }
         s.w[s.n] = w;
         s.a[s.n] = a;
-        s.b[s.n] = b;
         s.n++;
         s = np_sv_reduce(s);
         vec3 next = np_simplex_point(s);
@@ -289,25 +307,26 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
         least = min(least, dot(next, next));
         v = next;
     }
-    if (r.status != NP_GJK_OVERLAP && best.n > 0u) s = best;
+    // Separated (or out of iterations): the best-bounded simplex's answer; overlapping: the
+    // last simplex's, which EPA starts from.
+    bool use_best = r.status != NP_GJK_OVERLAP && best_gap < 3.0e38;
+    vec3 last = use_best ? best_v : np_simplex_point(s);
+    vec3 sum = use_best ? best_sum : np_simplex_sum(s);
+    r.pa = use_best ? best_pa : np_simplex_a(s);
     // Curved against curved (a rim on a cone's side) converges slowly: out of iterations
     // with the gap within NP_GJK_LOOSE of the distance, the answer is as good as separated.
-    if (r.status == NP_GJK_LIMIT && best_gap <= NP_GJK_LOOSE * length(np_simplex_point(s)))
+    if (r.status == NP_GJK_LIMIT && best_gap <= NP_GJK_LOOSE * length(last))
         r.status = NP_GJK_SEPARATED;
     // v's direction from np_simplex_point, its length from the weighted sum itself, a point
     // of the simplex: never short of the distance, where a sliver's edge basis might tilt
     // out of its plane and cut v short.
-    vec3 last = np_simplex_point(s);
-    vec3 sum = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.w[m];
     if (dot(last, last) > 0.0) last *= sqrt(dot(sum, sum) / dot(last, last));
     // Stopped with the origin within float noise of the simplex (no support point is new,
-    // or none gets closer): the cores touch or overlap, and EPA decides which.
+    // or none gets closer): the cores touch or overlap, and EPA decides which (from the last
+    // simplex: it holds the newest support points).
     if (r.status != NP_GJK_OVERLAP && dot(last, last) <= 1.0e-10 * scale) r.status = NP_GJK_OVERLAP;
     r.iterations = it;
     r.simplex = s;
-    r.pa = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) r.pa += s.lambda[m] * s.a[m];
     // b's point is a's less v, not b's own weighted sum: the weights carry the rounding of
     // the sub-algorithm along the simplex, which moves the two sums apart across v (it
     // tilts their difference; see np_simplex_point), while v is clean of it. Precise, so
