@@ -224,7 +224,7 @@ $(BUILD)/bench-prims: tools/bench/prims.c $(BUILD)/libtumble.a
 	$(Q)$(CC) $(TOOL_CFLAGS) -Isrc -o $@ tools/bench/prims.c $(BUILD)/libtumble.a $(LIBS)
 
 # Distance queries per second (tb_world_query_distances), through the public API.
-$(BUILD)/bench-distance: tools/bench/distance.c $(BUILD)/libtumble.a
+$(BUILD)/bench-distance: tools/bench/distance.c tests/convex_reference.h $(BUILD)/libtumble.a
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/bench/distance.c $(BUILD)/libtumble.a $(LIBS) -lm
 
@@ -286,6 +286,8 @@ $(BUILD)/tests/%: tests/%.cpp include/tumble.h abi/tumble_plugin.h $(BUILD)/libt
 	$(call say,CXX,$@)
 	@mkdir -p $(dir $@)
 	$(Q)$(CXX) -std=c++11 -O2 -Wall -Wextra -Wpedantic -Werror -Iinclude -Iabi -o $@ $< $(BUILD)/libtumble.a $(LIBS)
+
+$(BUILD)/tests/test_distance: tests/convex_reference.h
 
 $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(call say,LD,$@)

@@ -33,21 +33,16 @@
 #include <time.h>
 
 #include "tumble.h"
+#include "convex_reference.h"
 
 #define MAX_SIZES 16
 #define MAX_REPS 32
 #define SHAPES 24
 #define HULL_POINTS 16
 
-/* A shape as the host's reference sees it, in its body frame. */
-typedef struct shape {
-    tb_shape_id id;
-    int kind;                     /* 0 sphere, 1 box, 2 hull, 3 capsule, 4 cylinder, 5 cone */
-    double a, b, c;               /* radius (box: half x), half height (box: half y), box z */
-    double points[256][3];        /* hull vertices */
-    uint32_t point_count;
-    double size;
-} shape;
+/* The kinds in turn: sphere, box, hull, capsule, cylinder, cone. */
+static const tb_shape_type kinds[6] = { TB_SHAPE_SPHERE, TB_SHAPE_BOX, TB_SHAPE_HULL,
+                                        TB_SHAPE_CAPSULE, TB_SHAPE_CYLINDER, TB_SHAPE_CONE };
 
 static uint64_t state = 88172645463325252ull;
 
@@ -72,13 +67,14 @@ static void die(tb_world* w, const char* what)
     exit(1);
 }
 
-static void make_shape(tb_world* w, int kind, float size, shape* s)
+static void make_shape(tb_world* w, int kind, float size, ref_shape* s)
 {
     tb_shape_def def = tb_default_shape_def();
     tb_result r;
     float a = size * (float)uniform(0.5, 1), b = size * (float)uniform(0.3, 1);
     memset(s, 0, sizeof *s);
-    s->kind = kind, s->a = a, s->b = b, s->c = size, s->size = size;
+    s->type = kinds[kind], s->radius = a, s->half = b, s->size = size;
+    s->box[0] = a, s->box[1] = b, s->box[2] = size;
     if (kind == 0) r = tb_shape_create_sphere(w, &def, a, &s->id);
     else if (kind == 1) r = tb_shape_create_box(w, &def, (tb_vec3){ a, b, size }, &s->id);
     else if (kind == 2) {
@@ -88,6 +84,8 @@ static void make_shape(tb_world* w, int kind, float size, shape* s)
                               size * (float)uniform(-1, 1) };
         r = tb_shape_create_hull(w, &def, p, HULL_POINTS, &s->id);
         if (!r) r = tb_shape_get_hull_vertices(w, s->id, v, 256, &s->point_count);
+        s->points = malloc(256 * sizeof *s->points);
+        if (!s->points) die(NULL, "out of memory");
         for (uint32_t k = 0; !r && k < s->point_count; k++)
             s->points[k][0] = v[k].x, s->points[k][1] = v[k].y, s->points[k][2] = v[k].z;
     } else if (kind == 3) r = tb_shape_create_capsule(w, &def, a, b, &s->id);
@@ -98,8 +96,8 @@ static void make_shape(tb_world* w, int kind, float size, shape* s)
 
 /* `overlap`: 0 apart (centres 2.2 to 4 m apart, beyond any two shapes' reach), 1 centres
  * within 0.3 m (overlapping), 2 either at random. */
-static void fill(tb_distance_query* q, const shape** pick, uint32_t n, const shape* shapes,
-                 int overlap)
+static void fill(tb_distance_query* q, const ref_shape** pick, uint32_t n,
+                 const ref_shape* shapes, int overlap)
 {
     for (uint32_t i = 0; i < n; i++) {
         int close = overlap == 2 ? (int)(i & 1u) : overlap;
@@ -115,94 +113,6 @@ static void fill(tb_distance_query* q, const shape** pick, uint32_t n, const sha
               o.z + (float)(reach * d[2] / len) }, random_rotation(), TB_PENETRATION_DEFAULT,
         };
     }
-}
-
-/* ---- the host's reference, in double --------------------------------------------------- */
-
-typedef struct posed {
-    const shape* s;
-    double p[3], r[9];            /* r: rotation matrix, columns the body axes */
-} posed;
-
-static double dot3(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static posed posed_of(const shape* s, tb_vec3 p, tb_quat q)
-{
-    posed b = { s, { p.x, p.y, p.z }, { 0 } };
-    double x = q.x, y = q.y, z = q.z, w = q.w;
-    double n = sqrt(x * x + y * y + z * z + w * w);
-    x /= n, y /= n, z /= n, w /= n;
-    double* r = b.r;
-    r[0] = 1 - 2 * (y * y + z * z), r[1] = 2 * (x * y + z * w), r[2] = 2 * (x * z - y * w);
-    r[3] = 2 * (x * y - z * w), r[4] = 1 - 2 * (x * x + z * z), r[5] = 2 * (y * z + x * w);
-    r[6] = 2 * (x * z + y * w), r[7] = 2 * (y * z - x * w), r[8] = 1 - 2 * (x * x + y * y);
-    return b;
-}
-
-/* The shape's extent along world axis d from its position, its rounding radius included:
- * the core's farthest point along d (the kinds' cores as glsl/narrowphase/convex.glsl
- * describes them), plus the radius for spheres and capsules. */
-static double reach_along(const posed* b, const double d[3])
-{
-    double l[3];
-    for (int i = 0; i < 3; i++) l[i] = dot3(&b->r[3 * i], d);
-    const shape* s = b->s;
-    double rho = sqrt(l[0] * l[0] + l[2] * l[2]), c = 0;
-    if (s->kind == 0) c = s->a;
-    else if (s->kind == 1) c = s->a * fabs(l[0]) + s->b * fabs(l[1]) + s->c * fabs(l[2]);
-    else if (s->kind == 2) {
-        c = dot3(s->points[0], l);
-        for (uint32_t k = 1; k < s->point_count; k++) c = fmax(c, dot3(s->points[k], l));
-    } else if (s->kind == 3) c = s->b * fabs(l[1]) + s->a;
-    else if (s->kind == 4) c = s->a * rho + s->b * fabs(l[1]);
-    else c = fmax(1.5 * s->b * l[1], s->a * rho - 0.5 * s->b * l[1]);
-    return dot3(b->p, d) + c;
-}
-
-/* How far the shapes overlap along the unit axis n (b moved along n parts them): no axis
- * overlaps them less than their penetration depth. */
-static double overlap_along(const posed* a, const posed* b, const double n[3])
-{
-    double m[3] = { -n[0], -n[1], -n[2] };
-    return reach_along(a, n) + reach_along(b, m);
-}
-
-/* The least overlap from the start axis n: a local search on the sphere of directions,
- * a step along each of eight tangent directions (the star turned by the golden angle every
- * round, so that a ridge of the overlap between two of them does not hold it), the best
- * kept, the step halved when none improves, until it is under 1e-9 rad. Leaves the axis in
- * n. */
-static double least_overlap(const posed* a, const posed* b, double n[3])
-{
-    double best = overlap_along(a, b, n), step = 0.1, turn = 0;
-    for (int rounds = 0; step > 1e-9 && rounds < 4000; rounds++) {
-        double e[3] = { 0, 0, 0 }, u[3], v[3], pick[3];
-        e[fabs(n[0]) < fabs(n[1]) ? (fabs(n[0]) < fabs(n[2]) ? 0 : 2)
-                                  : (fabs(n[1]) < fabs(n[2]) ? 1 : 2)] = 1;
-        u[0] = n[1] * e[2] - n[2] * e[1], u[1] = n[2] * e[0] - n[0] * e[2];
-        u[2] = n[0] * e[1] - n[1] * e[0];
-        double lu = sqrt(dot3(u, u));
-        for (int i = 0; i < 3; i++) u[i] /= lu;
-        v[0] = n[1] * u[2] - n[2] * u[1], v[1] = n[2] * u[0] - n[0] * u[2];
-        v[2] = n[0] * u[1] - n[1] * u[0];
-        turn += 2.399963;
-        int moved = 0;
-        for (int k = 0; k < 8; k++) {
-            double c = step * cos(turn + k * 0.785398163), d = step * sin(turn + k * 0.785398163);
-            double m[3] = { n[0] + c * u[0] + d * v[0], n[1] + c * u[1] + d * v[1],
-                            n[2] + c * u[2] + d * v[2] };
-            double lm = sqrt(dot3(m, m));
-            for (int i = 0; i < 3; i++) m[i] /= lm;
-            double o = overlap_along(a, b, m);
-            if (o < best) best = o, memcpy(pick, m, sizeof pick), moved = 1;
-        }
-        if (moved) memcpy(n, pick, sizeof pick);
-        else step *= 0.5;
-    }
-    return best;
 }
 
 /* ---- measuring ------------------------------------------------------------------------ */
@@ -256,7 +166,7 @@ static double percentile(double* v, uint32_t n, double p)
 
 /* Each method's depth errors on the pairs whose cores overlap, against the reference from
  * both methods' normals. */
-static void measure_depths(const tb_distance_query* q, const shape** pick, uint32_t n,
+static void measure_depths(const tb_distance_query* q, const ref_shape** pick, uint32_t n,
                            tb_distance_result* const out[METHODS], depths d[METHODS])
 {
     double* err[METHODS];
@@ -332,12 +242,12 @@ int main(int argc, char** argv)
     tb_world_def def = tb_default_world_def();
     tb_world* w;
     if (tb_world_create(&def, &w)) die(NULL, "world");
-    static shape shapes[SHAPES];
+    static ref_shape shapes[SHAPES];
     for (int s = 0; s < SHAPES; s++) make_shape(w, s % 6, (float)uniform(0.1, 1.0), &shapes[s]);
     uint32_t most = 0;
     for (uint32_t k = 0; k < count; k++) most = sizes[k] > most ? sizes[k] : most;
     tb_distance_query* q = malloc((size_t)most * sizeof *q);
-    const shape** pick = malloc(2 * (size_t)most * sizeof *pick);
+    const ref_shape** pick = malloc(2 * (size_t)most * sizeof *pick);
     tb_distance_result* out[METHODS];
     for (int m = 0; m < METHODS; m++) out[m] = malloc((size_t)most * sizeof *out[m]);
     if (!q || !pick || !out[EPA] || !out[MPR]) die(w, "out of memory");
