@@ -2,6 +2,7 @@
  * cores, EPA or MPR where they overlap), 100,000 random pairs of every convex kind with sizes
  * from 1 cm to 10 m, each answer bounded from the other side by the host in double precision
  * along the GPU's normal, and the depths of both methods against the host's least overlap;
+ * points against tetrahedra (the sub-algorithm's simplices) against brute force;
  * depths and normals against answers known in closed form, by both methods, and by EPA for
  * spheres and capsules deep inside cylinders, cones and boxes; refused queries. */
 #include "harness.h"
