@@ -384,6 +384,12 @@ uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, v
     uint count = 0u;
     if (max(align_a, align_b) >= NP_FACE_COSINE) {
         bool ref_a = align_a >= align_b;
+        // The incident feature again, along the face's own normal: GJK's normal is only
+        // within its tolerance of the true one, and a curved side's line or a rim's point
+        // placed by a tilted normal sits beside the lowest line, where its points would
+        // tip a lying cylinder over.
+        if (ref_a) fb = np_feature_of(B, -fa.normal, 1u);
+        else fa = np_feature_of(A, -fb.normal, 0u);
         count = np_face_contact(t, ref_a ? fa : fb, ref_a ? fb : fa, ref_a, margin, normal);
     } else if (fa.count == 2u && fb.count == 2u &&
                abs(dot(normalize(np_feature_v[fa.slot][1] - np_feature_v[fa.slot][0]), normalize(np_feature_v[fb.slot][1] - np_feature_v[fb.slot][0]))) > 0.985) {
