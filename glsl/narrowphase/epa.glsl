@@ -212,6 +212,19 @@ np_epa_result np_epa_answer(uvec3 v, vec4 plane)
     return r;
 }
 
+// EPA's normal and witness points, or for cores that only touch (no depth found) its nearest
+// face's normal, or where it has none either GJK's points and their direction (its length
+// is float noise, its direction too). False when none of them gives a direction.
+bool np_epa_or_touch(np_gjk_result g, np_epa_result e, out vec3 n, out vec3 pa, out vec3 pb)
+{
+    vec3 gap = g.pb - g.pa;
+    bool along_gap = !e.found && e.normal == vec3(0.0) && dot(gap, gap) > 0.0;
+    n = along_gap ? normalize(gap) : e.normal;
+    pa = along_gap ? g.pa : e.pa;
+    pb = along_gap ? g.pb : e.pb;
+    return n != vec3(0.0);
+}
+
 np_epa_result np_epa(np_convex A, np_convex B, np_simplex s)
 {
     np_epa_result r;

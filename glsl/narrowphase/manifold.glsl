@@ -21,17 +21,22 @@ struct np_body {
     uint shape;     // index into shapes: hull routines find the hull data through it
 };
 
-np_body np_load_body(uint i)
+// Shape s placed at pos, turned by rot.
+np_body np_posed_shape(uint s, vec3 pos, mat3 rot)
 {
-    uint s = body_info[i].x;
     np_body b;
-    b.pos = body_pos[i].xyz;
-    b.rot = quat_to_mat3(body_rot[i]);
+    b.pos = pos;
+    b.rot = rot;
     b.params = shapes[s].params;
     b.material = shapes[s].material.xy;
     b.type = shapes[s].info.x;
     b.shape = s;
     return b;
+}
+
+np_body np_load_body(uint i)
+{
+    return np_posed_shape(body_info[i].x, body_pos[i].xyz, quat_to_mat3(body_rot[i]));
 }
 
 // Part c of body i as a pair sees it: a compound's child c, placed by the child's pose in
@@ -41,14 +46,8 @@ np_body np_load_part(uint i, uint c)
     np_body b = np_load_body(i);
     if (b.type != TB_GPU_SHAPE_COMPOUND) return b;
     tb_gpu_compound_child child = compound_of_shape(b.shape).child[c];
-    uint s = floatBitsToUint(child.position.w);
-    b.pos += b.rot * child.position.xyz;
-    b.rot = b.rot * quat_to_mat3(child.rotation);
-    b.params = shapes[s].params;
-    b.material = shapes[s].material.xy;
-    b.type = shapes[s].info.x;
-    b.shape = s;
-    return b;
+    return np_posed_shape(floatBitsToUint(child.position.w), b.pos + b.rot * child.position.xyz,
+                          b.rot * quat_to_mat3(child.rotation));
 }
 
 // Capsules, cylinders and cones: their pairs are narrowphase/round_points' (round.glsl).

@@ -449,15 +449,7 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec
         if (g.distance - A.radius - B.radius >= margin) return false;
         n = -normalize(g.v);
     } else {
-        np_epa_result e = np_epa(A, B, g.simplex);
-        // Cores that only touch (no depth to find): along EPA's nearest face, or else
-        // GJK's last direction (its length is float noise, its direction too).
-        vec3 gap = g.pb - g.pa;
-        bool along_gap = !e.found && e.normal == vec3(0.0);
-        if (along_gap && dot(gap, gap) == 0.0) return false;
-        n = along_gap ? normalize(gap) : e.normal;
-        pa = along_gap ? g.pa : e.pa;
-        pb = along_gap ? g.pb : e.pb;
+        if (!np_epa_or_touch(g, np_epa(A, B, g.simplex), n, pa, pb)) return false;
         np_keep_shallower_axis(A, B, n, pa, pb);
     }
     pa += o + n * A.radius;

@@ -28,14 +28,7 @@ layout(buffer_reference, std430, buffer_reference_align = 16) writeonly buffer R
 np_body posed(vec4 position, vec4 rotation)
 {
     uint s = floatBitsToUint(position.w) & TB_DISTANCE_SHAPE_MASK;
-    np_body b;
-    b.pos = position.xyz;
-    b.rot = quat_to_mat3(rotation);
-    b.params = shapes[s].params;
-    b.material = shapes[s].material.xy;
-    b.type = shapes[s].info.x;
-    b.shape = s;
-    return b;
+    return np_posed_shape(s, position.xyz, quat_to_mat3(rotation));
 }
 
 // The depth of overlapping cores by the query's method, as EPA's answer.
@@ -67,15 +60,12 @@ void main()
     } else {
         np_epa_result e = penetration(A, B, g.simplex, floatBitsToUint(q.position_a.w));
         // Cores that only touch: EPA's nearest face (MPR's last portal), or else GJK's
-        // points, their distance and direction.
-        vec3 gap = g.pb - g.pa;
-        bool along_gap = !e.found && e.normal == vec3(0.0) && dot(gap, gap) > 0.0;
-        status = e.found ? NP_GJK_OVERLAP
-                         : (along_gap || e.normal != vec3(0.0) ? NP_GJK_SEPARATED : 3u);
-        n = along_gap ? normalize(gap) : (e.normal != vec3(0.0) ? e.normal : n);
-        pa = along_gap ? g.pa : e.pa;
-        pb = along_gap ? g.pb : e.pb;
-        distance = e.found ? -e.depth : length(gap);
+        // points, their distance and direction; neither: failed, along y.
+        vec3 along;
+        bool touching = np_epa_or_touch(g, e, along, pa, pb);
+        status = e.found ? NP_GJK_OVERLAP : (touching ? NP_GJK_SEPARATED : 3u);
+        n = touching ? along : n;
+        distance = e.found ? -e.depth : length(g.pb - g.pa);
     }
     distance -= A.radius + B.radius;
     pa += o + n * A.radius;

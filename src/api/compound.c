@@ -19,8 +19,7 @@ static tb_result check_child_shape(tb_world* w, const tb_compound_child* c, uint
     tb_result r;
     const tb_shape_record* s = tb_shape_lookup(w, c->shape, &slot, &r);
     if (!s) return r;
-    if (s->type == TB_SHAPE_PLANE || s->type == TB_SHAPE_MESH ||
-        s->type == TB_SHAPE_HEIGHTFIELD || s->type == TB_SHAPE_COMPOUND)
+    if (!tb_shape_type_is_convex(s->type))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "compound child %u: only convex "
                        "shapes (spheres, boxes, hulls, capsules, cylinders, cones) can be "
                        "children (its shape has type %d)", i, (int)s->type);

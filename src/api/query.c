@@ -8,12 +8,6 @@
 #include "base/checks.h"
 #include "world/world.h"
 
-static int convex(tb_shape_type type)
-{
-    return type == TB_SHAPE_SPHERE || type == TB_SHAPE_BOX || type == TB_SHAPE_HULL ||
-           tb_shape_type_is_round(type);
-}
-
 /* One side of query i: its shape checked, its pose as the GPU reads it. */
 static tb_result pack_side(tb_world* w, uint32_t i, char side, tb_shape_id id, tb_vec3 position,
                            tb_quat rotation, tb_gpu_vec4* out_position, tb_gpu_vec4* out_rotation)
@@ -22,7 +16,7 @@ static tb_result pack_side(tb_world* w, uint32_t i, char side, tb_shape_id id, t
     tb_result r;
     tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
     if (!s) return r;
-    if (!convex(s->type))
+    if (!tb_shape_type_is_convex(s->type))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "distance query %u: shape %c is "
                        "not convex (type %d)", i, side, (int)s->type);
     if (slot > TB_DISTANCE_SHAPE_MASK)

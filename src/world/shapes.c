@@ -77,6 +77,12 @@ int tb_shape_type_is_round(tb_shape_type type)
     return type == TB_SHAPE_CAPSULE || type == TB_SHAPE_CYLINDER || type == TB_SHAPE_CONE;
 }
 
+int tb_shape_type_is_convex(tb_shape_type type)
+{
+    return type == TB_SHAPE_SPHERE || type == TB_SHAPE_BOX || type == TB_SHAPE_HULL ||
+           tb_shape_type_is_round(type);
+}
+
 static void count_shapes(tb_world* w, uint32_t* count, int change)
 {
     uint32_t before = *count;

@@ -215,6 +215,9 @@ uint32_t tb_bodies_ids(const tb_world* w, tb_body_id* out, uint32_t capacity);
 tb_shape_record* tb_shape_lookup(tb_world* w, tb_shape_id id, uint32_t* slot, tb_result* r);
 /// Capsules, cylinders and cones: convex shapes whose pairs narrowphase/round_points solves.
 int tb_shape_type_is_round(tb_shape_type type);
+/// Spheres, boxes, hulls and the round shapes: what distance queries measure and compounds
+/// take as children.
+int tb_shape_type_is_convex(tb_shape_type type);
 /// Add a checked shape: its record (a hull it holds becomes the world's) and its GPU entry.
 tb_result tb_shapes_add(tb_world* w, tb_shape_record* record, const tb_gpu_shape* gpu,
                         tb_shape_id* out);
