@@ -21,6 +21,8 @@
 #ifndef TB_NP_CONVEX_GLSL
 #define TB_NP_CONVEX_GLSL
 
+#extension GL_EXT_control_flow_attributes : require
+
 #define NP_SHAPE_TRIANGLE 100u
 
 #define NP_SKIN 0.04         // m: the most skin a cylinder or cone gets for contacts
@@ -111,6 +113,27 @@ vec3 np_core_support(np_convex c, vec3 d)
         return s0 >= s1 && s0 >= s2 ? c.v0 : (s1 >= s2 ? c.v1 : c.v2);
     }
     return c.body.pos + c.body.rot * np_core_support_local(c, transpose(c.body.rot) * d);
+}
+
+// A's farthest core point along d and B's along -d: a - b is the Minkowski difference's
+// support along d. On a CPU device one np_core_support in a loop rather than two calls: the
+// support is large (every shape kind), kernels call it in many places, and each call is a
+// copy of it, whose compile time on lavapipe grows faster than the kernel's size (round_points
+// took minutes). On a GPU the loop's choice between the two shapes costs 14 % of
+// round_points (H100), so there the two calls stay.
+void np_core_supports(np_convex A, np_convex B, vec3 d, out vec3 a, out vec3 b)
+{
+    a = b = vec3(0.0);
+    if (CPU_DEVICE == 0u) {
+        a = np_core_support(A, d);
+        b = np_core_support(B, -d);
+        return;
+    }
+    [[dont_unroll]] for (uint s = 0u; s < 2u; s++) {
+        vec3 p = np_core_support(s == 0u ? A : B, s == 0u ? d : -d);
+        if (s == 0u) a = p;
+        else b = p;
+    }
 }
 
 // The same shape moved by -o: GJK and EPA work about a point of the pair (the first shape's

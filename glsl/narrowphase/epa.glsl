@@ -40,8 +40,7 @@ uint np_epa_faces;
 uint np_epa_add_vertex(np_convex A, np_convex B, vec3 d)
 {
     uint m = np_epa_vertices++;
-    np_epa_a[m] = np_core_support(A, d);
-    np_epa_b[m] = np_core_support(B, -d);
+    np_core_supports(A, B, d, np_epa_a[m], np_epa_b[m]);
     np_epa_w[m] = np_epa_a[m] - np_epa_b[m];
     return m;
 }

@@ -257,8 +257,8 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
         // direction near a cylinder's axis) are then relative, however short v has become.
         float vv = dot(v, v);
         vec3 u = v * inversesqrt(vv);
-        vec3 a = np_core_support(A, -u);
-        vec3 b = np_core_support(B, u);
+        vec3 a, b;
+        np_core_supports(A, B, -u, a, b);
         vec3 w = a - b;
         if (far >= 0.0 && dot(u, w) > far) {
             r.status = NP_GJK_FAR;

@@ -49,8 +49,7 @@ uint np_mpr_iterations;
 void np_mpr_support(np_convex A, np_convex B, uint m, vec3 d)
 {
     d = normalize(d);
-    np_mpr_a[m] = np_core_support(A, d);
-    np_mpr_b[m] = np_core_support(B, -d);
+    np_core_supports(A, B, d, np_mpr_a[m], np_mpr_b[m]);
     np_mpr_w[m] = np_mpr_a[m] - np_mpr_b[m];
 }
 

@@ -23,6 +23,8 @@
 #ifndef TB_NP_ROUND_GLSL
 #define TB_NP_ROUND_GLSL
 
+#extension GL_EXT_control_flow_attributes : require
+
 #define NP_FEATURE_MAX 32u      // a hull face's most corners (TB_HULL_MAX_FACE_VERTICES)
 #define NP_DISC_CORNERS 8u      // a cap or base circle as a polygon
 #define NP_CLIP_ROOM 48u        // a clipped polygon's corners: 32 + 8 sides, and some
@@ -65,10 +67,12 @@ np_feature np_feature_disc(uint slot, vec3 c, vec3 normal, vec3 start, float r, 
     np_feature f;
     f.slot = slot;
     vec3 e2 = cross(normal, start);
-    for (uint k = 0u; k < NP_DISC_CORNERS; k++) {
-        float angle = 6.28318530718 * float(k) / float(NP_DISC_CORNERS);
-        np_feature_v[f.slot][k] = c + r * (cos(angle) * start + sin(angle) * e2);
-    }
+    // cos and sin of k 45 degrees.
+    const float h = 0.70710678;
+    const vec2 turn[NP_DISC_CORNERS] = vec2[](vec2(1, 0), vec2(h, h), vec2(0, 1), vec2(-h, h),
+                                              vec2(-1, 0), vec2(-h, -h), vec2(0, -1), vec2(h, -h));
+    for (uint k = 0u; k < NP_DISC_CORNERS; k++)
+        np_feature_v[f.slot][k] = c + r * (turn[k].x * start + turn[k].y * e2);
     f.count = NP_DISC_CORNERS;
     f.normal = normal;
     f.id = id;
@@ -197,13 +201,20 @@ np_convex np_convex_of_triangle(np_body mesh, np_triangle t)
     return c;
 }
 
-// The feature shape c presents along the unit direction d, on its surface.
-np_feature np_feature_of(np_convex c, vec3 d, uint slot)
+// The feature a capsule, cylinder or cone c presents along the unit direction d.
+np_feature np_round_feature_of(np_convex c, vec3 d, uint slot)
 {
     uint type = c.body.type;
     if (type == TB_GPU_SHAPE_CAPSULE) return np_capsule_feature(c, d, slot);
     if (type == TB_GPU_SHAPE_CYLINDER) return np_cylinder_feature(c, d, slot);
-    if (type == TB_GPU_SHAPE_CONE) return np_cone_feature(c, d, slot);
+    return np_cone_feature(c, d, slot);
+}
+
+// The feature shape c presents along the unit direction d, on its surface.
+np_feature np_feature_of(np_convex c, vec3 d, uint slot)
+{
+    uint type = c.body.type;
+    if (np_is_round(type)) return np_round_feature_of(c, d, slot);
     if (type == TB_GPU_SHAPE_BOX) return np_box_feature(c, d, slot);
     if (type == TB_GPU_SHAPE_HULL) return np_hull_feature(c, d, slot);
     if (type == NP_SHAPE_TRIANGLE) return np_triangle_feature(c, d, slot);
@@ -338,21 +349,21 @@ uint np_cand_emit(np_target t, vec4 plane, float margin, uint key)
     return count;
 }
 
-// The face contact: the incident feature clipped by the reference face; the normal from
-// the first shape to the second.
-uint np_face_contact(np_target t, np_feature ref, np_feature inc, bool ref_first, float margin,
-                     out vec3 normal)
+// The face contact's candidates: the incident feature clipped by the reference face; the
+// reference plane (outward from the reference shape) and the feature key.
+void np_face_candidates(np_feature ref, np_feature inc, bool ref_first, out vec4 plane,
+                        out uint key)
 {
     if (inc.count == 1u) np_clip_point(ref, np_feature_v[inc.slot][0]);
     else if (inc.count == 2u) np_clip_line(ref, inc);
     else np_clip_polygon(ref, inc);
-    normal = ref_first ? ref.normal : -ref.normal;
-    uint key = (ref_first ? 0u : 1u << 30) | ((ref.id & 255u) << 22) | ((inc.id & 255u) << 14);
-    return np_cand_emit(t, vec4(ref.normal, dot(ref.normal, np_feature_v[ref.slot][0])), margin, key);
+    plane = vec4(ref.normal, dot(ref.normal, np_feature_v[ref.slot][0]));
+    key = (ref_first ? 0u : 1u << 30) | ((ref.id & 255u) << 22) | ((inc.id & 255u) << 14);
 }
 
-// Two parallel lines: the second's part beside the first.
-uint np_line_contact(np_target t, np_feature a, np_feature b, vec3 n, float margin)
+// Two parallel lines: the candidates of the second's part beside the first, measured from
+// the plane through the first square to n.
+void np_line_candidates(np_feature a, np_feature b, vec3 n, out vec4 plane, out uint key)
 {
     vec3 da = np_feature_v[a.slot][1] - np_feature_v[a.slot][0];
     float la = dot(da, da);
@@ -365,52 +376,61 @@ uint np_line_contact(np_target t, np_feature a, np_feature b, vec3 n, float marg
         range = vec2(1.0, 0.0);
     }
     np_cand_count = 0u;
-    if (range.x > range.y) return 0u;
+    plane = vec4(n, dot(n, np_feature_v[a.slot][0]));
+    key = ((a.id & 255u) << 22) | ((b.id & 255u) << 14);
+    if (range.x > range.y) return;
     np_cand_add(mix(np_feature_v[b.slot][0], np_feature_v[b.slot][1], range.x), 0u);
     np_cand_add(mix(np_feature_v[b.slot][0], np_feature_v[b.slot][1], range.y), 1u);
-    uint key = ((a.id & 255u) << 22) | ((b.id & 255u) << 14);
-    return np_cand_emit(t, vec4(n, dot(n, np_feature_v[a.slot][0])), margin, key);
 }
 
-// The manifold of two shapes with unit normal n from A to B and their surface points pa,
-// pb closest along it (apart: the closest points; overlapping: EPA's witnesses).
-uint np_round_manifold(np_target t, np_convex A, np_convex B, vec3 n, vec3 pa, vec3 pb,
-                       float margin, out vec3 normal)
+// The candidates of two shapes' manifold, given their unit normal n from A to B and their
+// surface points pa, pb closest along it (apart: the closest points; overlapping: EPA's
+// witnesses): the reference plane they are measured from, the key, and the normal from A to
+// B (a face's where one is the reference).
+void np_round_candidates(np_convex A, np_convex B, vec3 n, vec3 pa, vec3 pb, float margin,
+                         out vec4 plane, out uint key, out vec3 normal)
 {
     normal = n;
-    np_feature fa = np_feature_of(A, n, 0u), fb = np_feature_of(B, -n, 1u);
-    float align_a = fa.count >= 3u ? dot(fa.normal, n) : -2.0;
-    float align_b = fb.count >= 3u ? dot(fb.normal, -n) : -2.0;
-    uint count = 0u;
-    if (max(align_a, align_b) >= NP_FACE_COSINE) {
-        bool ref_a = align_a >= align_b;
-        // The incident feature again, along the face's own normal: GJK's normal is only
-        // within its tolerance of the true one, and a curved side's line or a rim's point
-        // placed by a tilted normal sits beside the lowest line, where its points would
-        // tip a lying cylinder over.
-        if (ref_a) fb = np_feature_of(B, -fa.normal, 1u);
-        else fa = np_feature_of(A, -fb.normal, 0u);
-        count = np_face_contact(t, ref_a ? fa : fb, ref_a ? fb : fa, ref_a, margin, normal);
-    } else if (fa.count == 2u && fb.count == 2u &&
-               abs(dot(normalize(np_feature_v[fa.slot][1] - np_feature_v[fa.slot][0]), normalize(np_feature_v[fb.slot][1] - np_feature_v[fb.slot][0]))) > 0.985) {
-        count = np_line_contact(t, fa, fb, n, margin);
+    // Each shape's feature along n, then, where one is a face within NP_FACE_COSINE of n,
+    // the other's again along the face's own normal: GJK's normal is only within its
+    // tolerance of the true one, and a curved side's line or a rim's point placed by a
+    // tilted normal sits beside the lowest line, where its points would tip a lying
+    // cylinder over. One call in a loop, not three: np_feature_of is large.
+    np_feature f[2];
+    uint ref = 2u;
+    [[dont_unroll]] for (uint pass = 0u; pass < 3u; pass++) {
+        uint s = pass < 2u ? pass : 1u - ref;
+        vec3 d = pass == 0u ? n : (pass == 1u ? -n : -f[ref].normal);
+        f[s] = np_feature_of(s == 0u ? A : B, d, s);
+        if (pass != 1u) continue;
+        float align_a = f[0].count >= 3u ? dot(f[0].normal, n) : -2.0;
+        float align_b = f[1].count >= 3u ? dot(f[1].normal, -n) : -2.0;
+        if (max(align_a, align_b) < NP_FACE_COSINE) break;
+        ref = align_a >= align_b ? 0u : 1u;
     }
-    if (count > 0u) return count;
+    np_cand_count = 0u;
+    if (ref != 2u) {
+        np_face_candidates(f[ref], f[1u - ref], ref == 0u, plane, key);
+        normal = ref == 0u ? f[0].normal : -f[1].normal;
+    } else if (f[0].count == 2u && f[1].count == 2u &&
+               abs(dot(normalize(np_feature_v[0][1] - np_feature_v[0][0]),
+                       normalize(np_feature_v[1][1] - np_feature_v[1][0]))) > 0.985) {
+        np_line_candidates(f[0], f[1], n, plane, key);
+    }
+    bool near = false;
+    for (uint k = 0u; k < np_cand_count; k++)
+        near = near || dot(plane.xyz, np_cand[k].xyz) - plane.w < margin;
+    if (near) return;
+    // Anything else (or no candidate left within the margin): the closest points, as B's
+    // point measured from the plane through A's square to n.
     normal = n;
-    float separation = dot(pb - pa, n);
-    if (separation >= margin) return 0u;
-    np_emit(t, 0u, 0.5 * (pa + pb), separation, 1u << 31);
-    return 1u;
+    plane = vec4(n, dot(n, pa));
+    key = 1u << 31;
+    np_cand_count = 0u;
+    np_cand_add(pb, 0u);
 }
 
 // ---- the pairs -----------------------------------------------------------------------------
-
-// How far the cores overlap along the unit axis n (A's farthest point along n beyond B's
-// farthest along -n).
-float np_core_overlap(np_convex A, np_convex B, vec3 n)
-{
-    return dot(n, np_core_support(A, n)) - dot(n, np_core_support(B, -n));
-}
 
 // The penetration depth is the least overlap over all axes, so of EPA's normal and the line
 // between the centres, the one the shapes overlap less along is the better answer: a net
@@ -422,13 +442,22 @@ void np_keep_shallower_axis(np_convex A, np_convex B, inout vec3 n, inout vec3 p
     vec3 c = np_core_centre(B) - np_core_centre(A);
     if (dot(c, c) == 0.0) return;
     c = normalize(c);
-    float along_c = np_core_overlap(A, B, c);
+    // How far the cores overlap along c and along n (A's farthest point along the axis
+    // beyond B's farthest along its opposite), and A's farthest point along c.
+    float overlap[2];
+    vec3 a_along_c;
+    [[dont_unroll]] for (uint k = 0u; k < 2u; k++) {
+        vec3 axis = k == 0u ? c : n, a, b;
+        np_core_supports(A, B, axis, a, b);
+        overlap[k] = dot(axis, a - b);
+        if (k == 0u) a_along_c = a;
+    }
     // Only a clear miss is mended: shapes that barely touch overlap along no axis by more
     // than float noise, and a curved surface may leave a tilted axis a little shallower.
-    if (!(along_c > 0.0 && along_c < 0.5 * np_core_overlap(A, B, n))) return;
+    if (!(overlap[0] > 0.0 && overlap[0] < 0.5 * overlap[1])) return;
     n = c;
-    pa = np_core_support(A, c);
-    pb = pa - c * along_c;
+    pa = a_along_c;
+    pb = pa - c * overlap[0];
 }
 
 // Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
@@ -464,56 +493,79 @@ float np_bounding_radius(np_body b)
     return length(s.aabb_center.xyz) + length(s.aabb_half.xyz);
 }
 
-uint np_convex_round(np_target t, np_body a, np_body b, float margin, out vec3 normal)
-{
-    normal = vec3(0.0);
-    // Most pairs the broadphase finds are apart by more than the margin: their bounding
-    // balls tell, before GJK's loop.
-    float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
-    vec3 between = b.pos - a.pos;
-    if (dot(between, between) > reach * reach) return 0u;
-    np_convex A = np_convex_rounded(a), B = np_convex_rounded(b);
-    vec3 n, pa, pb;
-    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
-    return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
-}
-
 // A plane (first) and a round shape: the shape's feature towards the plane, its corners
 // measured from the plane.
-uint np_plane_round(np_target t, np_body plane, np_body b, float margin, out vec3 normal)
+void np_plane_candidates(np_body plane, np_body b, out vec4 half_space, out uint key,
+                         out vec3 normal)
 {
-    vec4 half_space = np_world_plane(plane);
+    half_space = np_world_plane(plane);
     normal = half_space.xyz;
     np_convex B = np_convex_of(b);
-    np_feature f = np_feature_of(B, -normal, 0u);
+    np_feature f = np_round_feature_of(B, -normal, 0u);
     np_cand_count = 0u;
     for (uint k = 0u; k < f.count; k++) np_cand_add(np_feature_v[f.slot][k], k);
-    return np_cand_emit(t, half_space, margin, (f.id & 255u) << 14);
+    key = (f.id & 255u) << 14;
 }
 
-// A mesh triangle (first) and a round shape, one-sided like triangle.glsl: a shape wholly
-// behind the triangle gets nothing; a contact whose normal would not leave the front, or
-// that touches an inactive edge or corner, takes the face normal.
-uint np_triangle_round(np_target t, np_body mesh, np_triangle tri, np_body b, float margin,
-                       out vec3 normal)
+// One-sided like triangle.glsl: a contact whose normal would not leave the triangle's front,
+// or that touches an inactive edge or corner, takes the face normal.
+void np_triangle_sided(np_triangle tri, np_convex A, np_convex B, inout vec3 n, inout vec3 pa,
+                       inout vec3 pb)
 {
-    normal = vec3(0.0);
-    if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return 0u;
-    np_convex A = np_convex_of_triangle(mesh, tri), B = np_convex_rounded(b);
-    vec3 front = tri.normal;
-    float highest = dot(np_core_support(B, front) - tri.v0, front) + B.radius;
-    if (highest < 0.0) return 0u;
-    vec3 n, pa, pb;
-    if (!np_round_normal(A, B, margin, n, pa, pb)) return 0u;
     uint feature;
     np_tri_closest(tri, pa, feature);
+    vec3 front = tri.normal;
     bool face = dot(n, front) >= 0.9999;
-    if (!face && (dot(n, front) <= 0.0 || !np_tri_feature_active(tri, feature))) {
-        n = front;
-        pb = np_core_support(B, -front) - front * B.radius;
-        pa = pb - front * dot(pb - tri.v0, front);
+    if (face || (dot(n, front) > 0.0 && np_tri_feature_active(tri, feature))) return;
+    n = front;
+    vec3 a;
+    np_core_supports(A, B, front, a, pb);   // B's farthest along -front
+    pb -= front * B.radius;
+    pa = pb - front * dot(pb - tri.v0, front);
+}
+
+// A round shape b and the first shape of its pair: a convex body a, or (on_mesh) the mesh
+// a's triangle tri, where a shape wholly behind the triangle gets nothing. GJK, EPA and the
+// manifold are written here once for both: each is a large part of the kernel, and
+// lavapipe's compile time grows faster than its size.
+bool np_round_pair(np_body a, np_body b, bool on_mesh, np_triangle tri, float margin,
+                   out vec4 plane, out uint key, out vec3 normal)
+{
+    normal = vec3(0.0);
+    np_convex A, B = np_convex_rounded(b);
+    if (on_mesh) {
+        if ((tri.flags & TB_MESH_DEGENERATE) != 0u) return false;
+        A = np_convex_of_triangle(a, tri);
+        vec3 back, top;
+        np_core_supports(A, B, -tri.normal, back, top);   // B's farthest along the front
+        if (dot(top - tri.v0, tri.normal) + B.radius < 0.0) return false;
+    } else {
+        // Most pairs the broadphase finds are apart by more than the margin: their bounding
+        // balls tell, before GJK's loop.
+        float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
+        vec3 between = b.pos - a.pos;
+        if (dot(between, between) > reach * reach) return false;
+        A = np_convex_rounded(a);
     }
-    return np_round_manifold(t, A, B, n, pa, pb, margin, normal);
+    vec3 n, pa, pb;
+    if (!np_round_normal(A, B, margin, n, pa, pb)) return false;
+    if (on_mesh) np_triangle_sided(tri, A, B, n, pa, pb);
+    np_round_candidates(A, B, n, pa, pb, margin, plane, key, normal);
+    return true;
+}
+
+// The contacts of a round shape b with the first shape of its pair a (a plane, a convex
+// body, or on_mesh the mesh a's triangle tri), written to t; the normal from a to b. Every
+// kind ends in the one reduction below (np_cand_emit, written once).
+uint np_round_contacts(np_target t, np_body a, np_body b, bool on_mesh, np_triangle tri,
+                       float margin, out vec3 normal)
+{
+    vec4 plane;
+    uint key;
+    bool found = true;
+    if (a.type == TB_GPU_SHAPE_PLANE) np_plane_candidates(a, b, plane, key, normal);
+    else found = np_round_pair(a, b, on_mesh, tri, margin, plane, key, normal);
+    return found ? np_cand_emit(t, plane, margin, key) : 0u;
 }
 
 #endif

@@ -33,17 +33,12 @@ uint round_points(uint p)
     // As contacts.comp: the block solver's stiffness of the pair carries over.
     uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
     manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
-    vec3 normal = vec3(0.0);
-    uint count;
+    vec3 normal;
     uint first = q.first.type;
-    if (first == TB_GPU_SHAPE_PLANE) {
-        count = np_plane_round(q.t, q.first, q.second, q.margin, normal);
-    } else if (first == TB_GPU_SHAPE_MESH || first == TB_GPU_SHAPE_HEIGHTFIELD) {
-        np_triangle tri = np_load_triangle(q.first, q.triangle, q.first.rot, q.first.pos);
-        count = np_triangle_round(q.t, q.first, tri, q.second, q.margin, normal);
-    } else {
-        count = np_convex_round(q.t, q.first, q.second, q.margin, normal);
-    }
+    bool on_mesh = first == TB_GPU_SHAPE_MESH || first == TB_GPU_SHAPE_HEIGHTFIELD;
+    np_triangle tri;
+    if (on_mesh) tri = np_load_triangle(q.first, q.triangle, q.first.rot, q.first.pos);
+    uint count = np_round_contacts(q.t, q.first, q.second, on_mesh, tri, q.margin, normal);
     np_pair_finish(q, count, normal);
     return count;
 }
