@@ -14,4 +14,5 @@ void main()
         return;
     }
     counters.pair_dispatch = dispatch_covering(total, TB_WORKGROUP_SIZE);
+    counters.wide_pair_dispatch = dispatch_covering(total, TB_WIDE_WORKGROUP_SIZE);
 }

@@ -16,7 +16,10 @@ void main()
 {
     if (step_aborted()) return;
     uint i = body_thread_index();
-    if (i == 0u) counters.pair_dispatch = dispatch_covering(counters.state.z, TB_WORKGROUP_SIZE);
+    if (i == 0u) {
+        counters.pair_dispatch = dispatch_covering(counters.state.z, TB_WORKGROUP_SIZE);
+        counters.wide_pair_dispatch = dispatch_covering(counters.state.z, TB_WIDE_WORKGROUP_SIZE);
+    }
     if (i >= counters.grid.z) return;
     bool even = current_half() == 0u;
     uvec2 run = even ? body_pairs[i].xy : body_pairs[i].zw;

@@ -6,7 +6,8 @@
 // shape (GJK, EPA), a plane, or a mesh triangle. One thread per pair; other pairs return at
 // once (contacts.comp and mesh_points.comp leave these alone). Recorded after hull_points
 // and before mesh_points while the world has such shapes, so mesh_reduce sees the triangle
-// pairs' points. Dispatched indirectly over counters.pair_dispatch.
+// pairs' points. Dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
+// TB_WIDE_WORKGROUP_SIZE.
 //
 // The round shapes come after every other convex shape and the plane in the canonical order
 // (by shape type), and after meshes too: here the second shape is always a round one.

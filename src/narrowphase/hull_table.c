@@ -218,12 +218,18 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     memset(np, 0, sizeof *np);
 }
 
+static tb_result per_pair_at(const tb_narrowphase* np, tb_pass_list* list, VkPipeline pipeline,
+                             VkBuffer counters, VkDeviceSize dispatch_offset)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters, dispatch_offset,
+                                     0, 0, 0);
+    return tb_pass_list_add(list, np->kit.diag, &pass);
+}
+
 static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeline pipeline,
                           VkBuffer counters)
 {
-    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
-                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0);
-    return tb_pass_list_add(list, np->kit.diag, &pass);
+    return per_pair_at(np, list, pipeline, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET);
 }
 
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
@@ -257,9 +263,10 @@ tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* l
 {
     tb_result r = TB_OK;
     if (!np->round_points)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points", TB_WORKGROUP_SIZE,
-                               &np->round_points);
-    return r ? r : per_pair(np, list, np->round_points, counters);
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points",
+                               TB_WIDE_WORKGROUP_SIZE, &np->round_points);
+    return r ? r : per_pair_at(np, list, np->round_points, counters,
+                               TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
 
 tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
