@@ -67,7 +67,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       outside), then those indices */
 #define TB_BIND_COLOUR_WORK     24 /* uint[2 * pair cap]: the constraints still uncoloured, two lists
                                       (each pair cap long) the colouring passes read and
-                                      write in turn (tb_gpu_counters.colouring counts them) */
+                                      write in turn (tb_gpu_counters.colouring counts them).
+                                      Before the solver, in the narrowphase, the first list
+                                      is the round pairs grouped by kind
+                                      (narrowphase/round_order, round_points) */
 /* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
  * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
  * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
@@ -162,6 +165,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * threads need about 250 registers, and in groups of 256 rather than 64 the pass took 14 %
  * less time on an H100 (groups of 512 cap the registers at 128 and spill: slower). */
 #define TB_WIDE_WORKGROUP_SIZE  256
+/* Kinds of the pairs with a capsule, cylinder or cone, as narrowphase/round_order groups them
+ * for round_points: the other shape's TB_GPU_SHAPE_* times 3 plus the round shape's
+ * (capsule 0, cylinder 1, cone 2). */
+#define TB_ROUND_KINDS          32
 /* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
 /* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed
@@ -227,6 +234,8 @@ TB_STRUCT(tb_gpu_counters) {
                                  those and zeroes x and y before a submission), z pairs of the
                                  last completed step (its manifolds are prev_manifolds), w unused */
     TB_UVEC4 wide_pair_dispatch; /* xyz: as pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE */
+    TB_UVEC4 round_kinds[TB_ROUND_KINDS]; /* the round pairs of each kind (narrowphase/round_order):
+                                 x how many, y placed so far; [0].w all of them */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)

@@ -28,6 +28,15 @@ struct np_pair {
     float margin;
 };
 
+// Which compound children of a and b a pair is of: above the triangle beside a mesh, else
+// a's in the low half of w and b's in the high half.
+uvec2 np_pair_children(uvec4 pair)
+{
+    bool mesh = pair_has_mesh(pair);
+    uint child_a = mesh ? pair.w >> TB_PAIR_TRIANGLE_BITS : pair.w & 0xffffu;
+    return uvec2(child_a, mesh ? child_a : pair.w >> 16);
+}
+
 np_pair np_pair_load(uint p)
 {
     np_pair q;
@@ -35,14 +44,10 @@ np_pair np_pair_load(uint p)
     q.a = pair.x;
     q.b = pair.y;
     q.sub = pair.w;
-    // A compound's child: above the triangle beside a mesh, else a's in the low half of w
-    // and b's in the high half.
-    bool mesh = pair_has_mesh(pair);
-    uint child_a = mesh ? pair.w >> TB_PAIR_TRIANGLE_BITS : pair.w & 0xffffu;
-    uint child_b = mesh ? child_a : pair.w >> 16;
+    uvec2 child = np_pair_children(pair);
     q.triangle = (pair.w & TB_PAIR_TRIANGLE_MASK) - 1u;
-    q.body_a = np_load_part(q.a, child_a);
-    q.body_b = np_load_part(q.b, child_b);
+    q.body_a = np_load_part(q.a, child.x);
+    q.body_b = np_load_part(q.b, child.y);
     q.swapped = q.body_a.type > q.body_b.type || (q.body_a.type == q.body_b.type && q.a > q.b);
     q.t = np_target_make(p, q.a, q.b, q.sub, current_half() ^ 1u);
     // Selected operands (not one call per order): both orders run the very same
@@ -59,6 +64,28 @@ void np_pair_finish(np_pair q, uint count, vec3 normal)
     np_finish(q.t, count, q.swapped ? -normal : normal, q.a, q.b,
               sqrt(q.body_a.material.x * q.body_b.material.x),
               max(q.body_a.material.y, q.body_b.material.y));
+}
+
+// The shape type of part c of body i (a compound's child c; any other body itself).
+uint np_part_type(uint i, uint c)
+{
+    uint s = body_info[i].x;
+    if (shapes[s].info.x != TB_GPU_SHAPE_COMPOUND) return shapes[s].info.x;
+    return shapes[floatBitsToUint(compound_of_shape(s).child[c].position.w)].info.x;
+}
+
+// The kind of pair p for round_points (TB_ROUND_KINDS), or TB_ROUND_KINDS when it has no
+// capsule, cylinder or cone (or is a compound pair whose parts are all apart). The round
+// types come last in the canonical order, so the round shape is the larger type.
+uint np_round_kind(uint p)
+{
+    uvec4 pair = pairs[pair_half_base() + p];
+    if (pair.w == TB_PAIR_UNSPLIT) return TB_ROUND_KINDS;
+    uvec2 child = np_pair_children(pair);
+    uint ta = np_part_type(pair.x, child.x), tb = np_part_type(pair.y, child.y);
+    uint first = min(ta, tb), second = max(ta, tb);
+    if (!np_is_round(second)) return TB_ROUND_KINDS;
+    return first * 3u + second - TB_GPU_SHAPE_CAPSULE;
 }
 
 // Contact points for the stats: one atomic per subgroup.

@@ -6,8 +6,9 @@
 // shape (GJK, EPA), a plane, or a mesh triangle. One thread per pair; other pairs return at
 // once (contacts.comp and mesh_points.comp leave these alone). Recorded after hull_points
 // and before mesh_points while the world has such shapes, so mesh_reduce sees the triangle
-// pairs' points. Dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
-// TB_WIDE_WORKGROUP_SIZE.
+// pairs' points. A thread per round pair, in the order round_order listed them (grouped
+// by kind); dispatched indirectly over counters.wide_pair_dispatch (enough for every pair),
+// in workgroups of TB_WIDE_WORKGROUP_SIZE.
 //
 // The round shapes come after every other convex shape and the plane in the canonical order
 // (by shape type), and after meshes too: here the second shape is always a round one.
@@ -47,7 +48,8 @@ uint round_points(uint p)
 void main()
 {
     if (counters.state.x != 0u) return;
-    uint p = pair_thread_index();
-    bool mine = p < counters.state.z && pairs[pair_half_base() + p].w != TB_PAIR_UNSPLIT;
-    np_count_points(mine ? round_points(p) : 0u);
+    // The round pairs, grouped by kind (round_order).
+    uint t = pair_thread_index();
+    bool mine = t < counters.round_kinds[0].w;
+    np_count_points(mine ? round_points(colour_work[t]) : 0u);
 }

@@ -212,6 +212,8 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
+    tb_pipeline_destroy(np->kit.pipelines, np->round_count);
+    tb_pipeline_destroy(np->kit.pipelines, np->round_order);
     tb_pipeline_destroy(np->kit.pipelines, np->round_points);
     tb_pipeline_destroy(np->kit.pipelines, np->keep);
     hull_table_destroy(np);
@@ -261,10 +263,17 @@ tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* li
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
                                              VkBuffer counters)
 {
+    tb_pipelines* p = np->kit.pipelines;
     tb_result r = TB_OK;
-    if (!np->round_points)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points",
-                               TB_WIDE_WORKGROUP_SIZE, &np->round_points);
+    if (!np->round_count)
+        r = tb_pipeline_create(p, "narrowphase/round_count", TB_WORKGROUP_SIZE, &np->round_count);
+    if (!r && !np->round_order)
+        r = tb_pipeline_create(p, "narrowphase/round_order", TB_WORKGROUP_SIZE, &np->round_order);
+    if (!r && !np->round_points)
+        r = tb_pipeline_create(p, "narrowphase/round_points", TB_WIDE_WORKGROUP_SIZE,
+                               &np->round_points);
+    if (!r) r = per_pair(np, list, np->round_count, counters);
+    if (!r) r = per_pair(np, list, np->round_order, counters);
     return r ? r : per_pair_at(np, list, np->round_points, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }

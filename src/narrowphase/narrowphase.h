@@ -48,7 +48,9 @@ typedef struct tb_narrowphase {
     tb_gpu_kit kit;
     VkPipeline contacts, hull_points, keep;
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
-    VkPipeline round_points;               ///< made when the world's first round shape comes
+    /// made when the world's first round shape comes: the round pairs counted and grouped
+    /// by kind, then their points
+    VkPipeline round_count, round_order, round_points;
     tb_hull_table hulls;
 } tb_narrowphase;
 
