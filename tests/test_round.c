@@ -2,7 +2,8 @@
  * refusal of bad ones; resting on a plane, a box, a hull and a mesh on their sides and ends
  * without drift, with the contact points a stable rest needs (a cylinder on its cap four, on
  * its side two); a cylinder rolling down an incline at (2/3) g sin(angle); pairs among
- * themselves and with spheres; compounds with round children. */
+ * themselves and with spheres; a sphere or capsule against a capsule in closed form;
+ * compounds with round children. */
 #include "harness.h"
 
 #include <math.h>
@@ -394,6 +395,68 @@ static void check_mass(tb_world* w, tb_shape_type type, solid_fn inside, float r
     th_assert_ok(tb_body_destroy(w, body));
 }
 
+/* A sphere or capsule against a capsule goes in closed form (the closest points of the two
+ * segments): placed still in a world without gravity, one step's contact reads the exact
+ * separation and normal. Each case: the first body (a sphere when its half height is
+ * negative), the capsule, the separation and the normal's direction expected, the points. */
+typedef struct segment_case {
+    float radius_a, half_a;   ///< half_a < 0: a sphere
+    tb_vec3 at_a;
+    tb_quat turn_a;
+    tb_vec3 at_b;             ///< a capsule of radius 0.2, half height 0.5
+    tb_quat turn_b;
+    float separation;
+    tb_vec3 normal;           ///< from the first body to the capsule, up to sign when crossed
+    uint32_t points;
+} segment_case;
+
+static void test_capsule_pairs_closed_form(void** state)
+{
+    (void)state;
+    const tb_quat along_x = { 0, 0, 0.70710678f, 0.70710678f }, along_z = { 0.70710678f, 0, 0, 0.70710678f };
+    const segment_case cases[] = {
+        /* crossing at right angles, 0.3 apart: 0.1 deep */
+        { 0.2f, 0.5f, { 0, 0, 0 }, along_x, { 0, 0.3f, 0 }, along_z, -0.1f, { 0, 1, 0 }, 1 },
+        /* the cores cross: the normal square to both, as deep as both radii */
+        { 0.2f, 0.5f, { 0, 0, 0 }, along_x, { 0.1f, 0, -0.2f }, along_z, -0.4f, { 0, 1, 0 }, 1 },
+        /* a sphere over the capsule's side, off its middle */
+        { 0.25f, -1.0f, { 0.2f, 0.4f, 0 }, { 0, 0, 0, 1 }, { 0, 0, 0 }, along_x, -0.05f, { 0, -1, 0 }, 1 },
+        /* a sphere beyond the capsule's end, along its axis */
+        { 0.25f, -1.0f, { 0.9f, 0, 0 }, { 0, 0, 0, 1 }, { 0, 0, 0 }, along_x, -0.05f, { -1, 0, 0 }, 1 },
+        /* side by side, parallel and shifted: a line contact */
+        { 0.2f, 0.5f, { 0, 0, 0 }, along_x, { 0.3f, 0.35f, 0 }, along_x, -0.05f, { 0, 1, 0 }, 2 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const segment_case* c = &cases[i];
+        tb_world_def wd = tb_default_world_def();
+        wd.gravity = th_v3(0, 0, 0);
+        tb_world* w = th_world_create(&wd);
+        tb_shape_id sa = c->half_a < 0 ? th_sphere(w, c->radius_a)
+                                       : make_round(w, TB_SHAPE_CAPSULE, c->radius_a, c->half_a);
+        tb_body_def da = th_dynamic_def(sa, c->at_a), db = th_dynamic_def(make_round(w, TB_SHAPE_CAPSULE, 0.2f, 0.5f), c->at_b);
+        da.rotation = c->turn_a;
+        db.rotation = c->turn_b;
+        tb_body_id a = th_body(w, &da), b = th_body(w, &db);
+        th_assert_ok(tb_world_step(w, 1e-4f));
+        tb_contact contacts[8];
+        uint32_t count = 0;
+        th_assert_ok(tb_world_read_contacts(w, contacts, 8, &count));
+        printf("case %zu: %u points", i, count);
+        assert_int_equal(count, c->points);
+        for (uint32_t k = 0; k < count; k++) {
+            tb_vec3 n = contacts[k].normal;
+            float sign = contacts[k].a.index1 == a.index1 ? 1.0f : -1.0f;   /* first to capsule */
+            float along = sign * (n.x * c->normal.x + n.y * c->normal.y + n.z * c->normal.z);
+            printf(", separation %.6f normal %.5f %.5f %.5f", contacts[k].separation, n.x, n.y, n.z);
+            assert_true(contacts[k].a.index1 == a.index1 || contacts[k].a.index1 == b.index1);
+            assert_true(fabs(contacts[k].separation - c->separation) < 1e-5);
+            assert_true(i == 1 ? fabs(along) > 0.99999 : along > 0.99999);
+        }
+        printf("\n");
+        th_world_destroy(w);
+    }
+}
+
 static void test_sizes_and_mass(void** state)
 {
     (void)state;
@@ -459,6 +522,7 @@ int main(void)
         cmocka_unit_test(test_cylinder_rolls_down_incline),
         cmocka_unit_test(test_round_towers),
         cmocka_unit_test(test_compound_with_round_children),
+        cmocka_unit_test(test_capsule_pairs_closed_form),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

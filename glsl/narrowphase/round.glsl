@@ -460,13 +460,80 @@ void np_keep_shallower_axis(np_convex A, np_convex B, inout vec3 n, inout vec3 p
     pb = pa - c * overlap[0];
 }
 
-// Normal (A to B) and surface points of two convex shapes: GJK on the cores, EPA where they
-// overlap. False when they are farther apart than the margin (or EPA found nothing); GJK
-// gives up on a pair as soon as a support plane shows that.
+// A sphere's or capsule's core as a segment from p to q (a sphere's of no length), about o;
+// false for any other shape.
+bool np_core_segment(np_convex c, vec3 o, out vec3 p, out vec3 q)
+{
+    p = q = c.body.pos - o;
+    if (c.body.type == TB_GPU_SHAPE_SPHERE) return true;
+    if (c.body.type != TB_GPU_SHAPE_CAPSULE) return false;
+    vec3 u = c.body.rot[1];
+    p += u * c.core.y;
+    q += u * c.core.z;
+    return true;
+}
+
+// The closest points of segments p1 q1 and p2 q2: x on the first, y on the second (as
+// fractions along each). Where the best point of one falls off its segment it is clamped
+// and the other's is found again; parallel segments take the first's start.
+vec2 np_segments_closest(vec3 p1, vec3 q1, vec3 p2, vec3 q2)
+{
+    vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+    float a = dot(d1, d1), e = dot(d2, d2), f = dot(d2, r);
+    if (a == 0.0) return vec2(0.0, e == 0.0 ? 0.0 : clamp(f / e, 0.0, 1.0));
+    float c = dot(d1, r);
+    if (e == 0.0) return vec2(clamp(-c / a, 0.0, 1.0), 0.0);
+    float b = dot(d1, d2), square = a * e - b * b;
+    float s = square > 1.0e-7 * a * e ? clamp((b * f - c * e) / square, 0.0, 1.0) : 0.0;
+    float t = (b * s + f) / e;
+    if (t < 0.0) return vec2(clamp(-c / a, 0.0, 1.0), 0.0);
+    if (t > 1.0) return vec2(clamp((b - c) / a, 0.0, 1.0), 1.0);
+    return vec2(s, t);
+}
+
+// Sphere or capsule A against a capsule B, in closed form: the closest points of their
+// segments give the normal and the surface points, exactly and without GJK. Cores that
+// cross take the normal square to both segments (or along the centres where they are
+// parallel), turned from A towards B. False when farther apart than the margin.
+bool np_segments_normal(vec3 p1, vec3 q1, vec3 p2, vec3 q2, float ra, float rb, float margin,
+                        out vec3 n, out vec3 pa, out vec3 pb)
+{
+    vec2 st = np_segments_closest(p1, q1, p2, q2);
+    vec3 ca = mix(p1, q1, st.x), cb = mix(p2, q2, st.y), between = cb - ca;
+    float distance = length(between);
+    n = vec3(0.0, 1.0, 0.0);
+    pa = ca;
+    pb = cb;
+    if (distance - ra - rb >= margin) return false;
+    float size = max(max(length(q1 - p1), length(q2 - p2)), ra + rb);
+    if (distance > 1.0e-6 * size) {
+        n = between / distance;
+    } else {
+        vec3 centres = 0.5 * (p2 + q2 - p1 - q1), across = cross(q1 - p1, q2 - p2);
+        vec3 d = dot(across, across) > 1.0e-12 * size * size * size * size ? across : centres;
+        if (dot(d, d) > 0.0) n = normalize(dot(d, centres) < 0.0 ? -d : d);
+    }
+    pa = ca + n * ra;
+    pb = cb - n * rb;
+    return true;
+}
+
+// Normal (A to B) and surface points of two convex shapes: in closed form for a sphere or
+// capsule against a capsule, else GJK on the cores and EPA where they overlap. False when
+// they are farther apart than the margin (or EPA found nothing); GJK gives up on a pair as
+// soon as a support plane shows that.
 bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
                      out vec3 pa, out vec3 pb)
 {
     vec3 o = np_core_centre(world_a);
+    vec3 p1, q1, p2, q2;
+    if (np_core_segment(world_a, o, p1, q1) && np_core_segment(world_b, o, p2, q2)) {
+        bool near = np_segments_normal(p1, q1, p2, q2, world_a.radius, world_b.radius, margin,
+                                       n, pa, pb);
+        pa += o;
+        pb += o;
+        return near;
+    }
     np_convex A = np_convex_moved(world_a, o), B = np_convex_moved(world_b, o);
     np_gjk_result g = np_gjk_within(A, B, A.radius + B.radius + margin,
                                     NP_GJK_CONTACT_TOLERANCE);
