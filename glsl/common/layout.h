@@ -161,7 +161,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 /* Threads per workgroup of per-body stages. */
 #define TB_WORKGROUP_SIZE       64
-/* Threads per workgroup of narrowphase/round_points on GPUs (counters.wide_pair_dispatch): its
+/* Threads per workgroup of narrowphase/round_points (counters.wide_pair_dispatch): its
  * threads need about 250 registers, and in groups of 256 rather than 64 the pass took 14 %
  * less time on an H100 (groups of 512 cap the registers at 128 and spill: slower). */
 #define TB_WIDE_WORKGROUP_SIZE  256

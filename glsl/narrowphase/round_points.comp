@@ -3,15 +3,15 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // Narrowphase of the pairs with a capsule, cylinder or cone (round.glsl): against any convex
-// shape (GJK, EPA), a plane, or a mesh triangle. One thread per pair; other pairs return at
-// once (contacts.comp and mesh_points.comp leave these alone). Recorded after hull_points
-// and before mesh_points while the world has such shapes, so mesh_reduce sees the triangle
-// pairs' points. A thread per round pair, in the order round_order listed them (grouped
-// by kind); dispatched indirectly over counters.wide_pair_dispatch (enough for every pair),
-// in workgroups of TB_WIDE_WORKGROUP_SIZE.
+// shape (GJK, EPA), a plane, or a mesh triangle (contacts.comp and mesh_points.comp leave
+// these pairs alone). Recorded after hull_points and before mesh_points while the world has
+// such shapes, so mesh_reduce sees the triangle pairs' points. A thread per round pair, in
+// the order round_order listed them (grouped by kind); dispatched indirectly over
+// counters.wide_pair_dispatch (enough for every pair), in workgroups of
+// TB_WIDE_WORKGROUP_SIZE.
 //
 // The round shapes come after every other convex shape and the plane in the canonical order
-// (by shape type), and after meshes too: here the second shape is always a round one.
+// (by shape type), and after meshes too: the second shape of a listed pair is a round one.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"
@@ -31,7 +31,6 @@
 uint round_points(uint p)
 {
     np_pair q = np_pair_load(p);
-    if (!np_is_round(q.second.type)) return 0u;
     // As contacts.comp: the block solver's stiffness of the pair carries over.
     uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
     manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);

@@ -17,7 +17,8 @@ void main()
         counters.solver = uvec4(0u);
         counters.events.x = counters.events.y;   // no event of an abandoned attempt stays
     }
-    for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x) counters.round_kinds[k] = uvec4(0u);
+    for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x)
+        counters.round_kinds[k] = uvec4(0u);
     for (uint c = t; c < TB_MAX_COLOURS; c += gl_WorkGroupSize.x) {
         counters.colour[c] = uvec4(0u);
         counters.colour_dispatch[c] = uvec4(0u, 1u, 1u, 0u);
