@@ -25,11 +25,13 @@
 #define NP_GJK_LOOSE 1.0e-5   // relative gap still taken as converged at the limit
 
 // B's support points are not kept: b = a - w wherever one is needed (EPA's start), so the
-// simplex the sub-algorithm copies about is a third smaller.
+// simplex is a third smaller. Every index into w, a and lambda is a constant once loops are
+// unrolled (vertices are picked by selects, never by a computed index), so the simplex
+// stays in registers: indexed by a variable, a GPU compiler puts private arrays in memory.
 struct np_simplex {
-    vec3 w[4];      // Minkowski points a - b
+    vec3 w[4];      // Minkowski points a - b (slots n..3 unused, finite)
     vec3 a[4];      // A's support points
-    vec4 lambda;    // barycentric weights of the closest point
+    vec4 lambda;    // barycentric weights of the closest point (zero beyond n)
     uint n;
 };
 
@@ -38,17 +40,10 @@ bool np_same_sign(float x, float y)
     return (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
 }
 
-// The simplex of s's vertices i, j, k (the first n of them).
-np_simplex np_simplex_pick(np_simplex s, uint i, uint j, uint k, uint n)
+// Vertex i (0-3) of four, by selects.
+vec3 np_pick(vec3 p0, vec3 p1, vec3 p2, vec3 p3, uint i)
 {
-    np_simplex t = s;
-    uvec3 idx = uvec3(i, j, k);
-    for (uint m = 0u; m < n; m++) {
-        t.w[m] = s.w[idx[m]];
-        t.a[m] = s.a[idx[m]];
-    }
-    t.n = n;
-    return t;
+    return i == 0u ? p0 : (i == 1u ? p1 : (i == 2u ? p2 : p3));
 }
 
 // v less its part along the unit vector u, when u is one (a zero u removes nothing).
@@ -63,20 +58,20 @@ vec3 np_unit_or_zero(vec3 e)
     return ee > 0.0 ? e * inversesqrt(ee) : vec3(0.0);
 }
 
-// The simplex's closest point to the origin: the weighted sum of its vertices, made
-// orthogonal to its edges again. The sum of vertices far from the origin carries their
-// rounding (float's epsilon times |w|) in every direction; left in, the part along the
-// simplex tilts the direction of v by up to epsilon |w| / |v|, and with it the normal and
-// the next support points, which a long face turns into a distance error of that tilt times
-// its length. Removed against an orthonormal basis of the edges, twice (once more takes out
-// what the first pass rounded), only the error across the simplex stays: the distance's own.
-vec3 np_simplex_point(np_simplex s)
+// The closest point to the origin of the simplex p (n of 1-3 vertices, weights l): the
+// weighted sum of its vertices, made orthogonal to its edges again. The sum of vertices far
+// from the origin carries their rounding (float's epsilon times |w|) in every direction;
+// left in, the part along the simplex tilts the direction of v by up to epsilon |w| / |v|,
+// and with it the normal and the next support points, which a long face turns into a
+// distance error of that tilt times its length. Removed against an orthonormal basis of the
+// edges, twice (once more takes out what the first pass rounded), only the error across the
+// simplex stays: the distance's own.
+vec3 np_simplex_point_of(vec3 p0, vec3 p1, vec3 p2, vec3 l, uint n)
 {
-    vec3 v = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) v += s.lambda[m] * s.w[m];
-    if (s.n < 2u || s.n > 3u) return v;
-    vec3 e1 = s.w[1] - s.w[0];
-    vec3 e2 = s.n == 3u ? s.w[2] - s.w[0] : vec3(0.0);
+    vec3 v = l.x * p0 + l.y * p1 + l.z * p2;
+    if (n < 2u || n > 3u) return v;
+    vec3 e1 = p1 - p0;
+    vec3 e2 = n == 3u ? p2 - p0 : vec3(0.0);
     if (dot(e2, e2) > dot(e1, e1)) {
         vec3 t = e1;
         e1 = e2;
@@ -88,47 +83,51 @@ vec3 np_simplex_point(np_simplex s)
     return v;
 }
 
-// The weighted sums of the simplex's w and of its a.
+vec3 np_simplex_point(np_simplex s)
+{
+    if (s.n == 4u) return s.lambda.x * s.w[0] + s.lambda.y * s.w[1] + s.lambda.z * s.w[2] + s.lambda.w * s.w[3];
+    return np_simplex_point_of(s.w[0], s.w[1], s.w[2], s.lambda.xyz, s.n);
+}
+
+// The weighted sums of the simplex's w and of its a (weights beyond n are zero).
 vec3 np_simplex_sum(np_simplex s)
 {
-    vec3 sum = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.w[m];
-    return sum;
+    return s.lambda.x * s.w[0] + s.lambda.y * s.w[1] + s.lambda.z * s.w[2] + s.lambda.w * s.w[3];
 }
 
 vec3 np_simplex_a(np_simplex s)
 {
-    vec3 sum = vec3(0.0);
-    for (uint m = 0u; m < s.n; m++) sum += s.lambda[m] * s.a[m];
-    return sum;
+    return s.lambda.x * s.a[0] + s.lambda.y * s.a[1] + s.lambda.z * s.a[2] + s.lambda.w * s.a[3];
 }
 
-// Segment w0 w1: the origin's projection on the line, measured along the axis where the
-// segment is longest.
-np_simplex np_sv_segment(np_simplex s)
+// The sub-algorithm gives weights over the vertices it was handed, zero for those it drops
+// (a drop mask beside them, as weights may round to zero): the simplex is then packed once,
+// in the GJK loop, instead of copied at every sub-simplex tried.
+
+// Segment p q: the origin's projection on the line, measured along the axis where the
+// segment is longest. Weights of p and q; keep: which of them stay (bits 0, 1).
+vec2 np_sv_segment(vec3 p, vec3 q, out uint keep)
 {
-    vec3 t = s.w[1] - s.w[0];
+    vec3 t = q - p;
     float tt = dot(t, t);
-    if (tt == 0.0) {
-        s.n = 1u;
-        s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
-        return s;
-    }
-    vec3 p = s.w[0] - t * (dot(s.w[0], t) / tt);
+    keep = 1u;
+    if (tt == 0.0) return vec2(1.0, 0.0);
+    vec3 x = p - t * (dot(p, t) / tt);
     vec3 at = abs(t);
     uint k = at.x >= at.y && at.x >= at.z ? 0u : (at.y >= at.z ? 1u : 2u);
-    float mu = s.w[0][k] - s.w[1][k];
-    float c0 = p[k] - s.w[1][k];    // w0's weight times mu
-    float c1 = s.w[0][k] - p[k];    // w1's
+    float mu = p[k] - q[k];
+    float c0 = x[k] - q[k];    // p's weight times mu
+    float c1 = p[k] - x[k];    // q's
     if (np_same_sign(mu, c0) && np_same_sign(mu, c1)) {
-        s.lambda = vec4(c0, c1, 0.0, 0.0) / (c0 + c1);
-        return s;
+        keep = 3u;
+        return vec2(c0, c1) / (c0 + c1);
     }
     // Beyond an end: that end alone.
-    if (!np_same_sign(mu, c0)) s = np_simplex_pick(s, 1u, 0u, 0u, 1u);
-    else s.n = 1u;
-    s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
-    return s;
+    if (!np_same_sign(mu, c0)) {
+        keep = 2u;
+        return vec2(0.0, 1.0);
+    }
+    return vec2(1.0, 0.0);
 }
 
 // Twice the signed area of the triangle (p, q, r) in the coordinate plane (x, y).
@@ -137,39 +136,47 @@ float np_area2(vec2 p, vec2 q, vec2 r)
     return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
 }
 
-// Triangle w0 w1 w2: the origin's projection on its plane, weighed by the areas of the
+// Triangle p0 p1 p2: the origin's projection on its plane, weighed by the areas of the
 // triangles it makes with each edge in the coordinate plane where the triangle is largest.
 // A weight of the wrong sign puts the projection beyond the opposite edge; the closest of
-// those edges' answers wins.
-np_simplex np_sv_triangle(np_simplex s)
+// those edges' answers wins. Weights of the three; keep: bits of those that stay.
+vec3 np_sv_triangle(vec3 p0, vec3 p1, vec3 p2, out uint keep)
 {
-    vec3 n = cross(s.w[1] - s.w[0], s.w[2] - s.w[0]);
+    vec3 n = cross(p1 - p0, p2 - p0);
     float nn = dot(n, n);
-    vec3 p = nn > 0.0 ? n * (dot(s.w[0], n) / nn) : vec3(0.0);
+    vec3 p = nn > 0.0 ? n * (dot(p0, n) / nn) : vec3(0.0);
     vec3 an = abs(n);
     // Keep the two axes after the largest one in cyclic order, so the projected area has
     // the sign of that component of n.
     uint k = an.x >= an.y && an.x >= an.z ? 0u : (an.y >= an.z ? 1u : 2u);
     uint i = (k + 1u) % 3u, j = (k + 2u) % 3u;
-    vec2 q0 = vec2(s.w[0][i], s.w[0][j]), q1 = vec2(s.w[1][i], s.w[1][j]);
-    vec2 q2 = vec2(s.w[2][i], s.w[2][j]), pp = vec2(p[i], p[j]);
+    vec2 q0 = vec2(p0[i], p0[j]), q1 = vec2(p1[i], p1[j]);
+    vec2 q2 = vec2(p2[i], p2[j]), pp = vec2(p[i], p[j]);
     float mu = np_area2(q0, q1, q2);
     vec3 c = vec3(np_area2(pp, q1, q2), np_area2(q0, pp, q2), np_area2(q0, q1, pp));
-    if (np_same_sign(mu, c.x) && np_same_sign(mu, c.y) && np_same_sign(mu, c.z)) {
-        // Over their own sum, not mu: the areas round with the vertices' size, and for a
-        // sliver far from the origin weights that do not sum to one scale v with them.
-        s.lambda = vec4(c / (c.x + c.y + c.z), 0.0);
-        return s;
-    }
-    np_simplex best = s;
+    keep = 7u;
+    // Over their own sum, not mu: the areas round with the vertices' size, and for a
+    // sliver far from the origin weights that do not sum to one scale v with them.
+    if (np_same_sign(mu, c.x) && np_same_sign(mu, c.y) && np_same_sign(mu, c.z))
+        return c / (c.x + c.y + c.z);
+    keep = 1u;
+    vec3 best = vec3(1.0, 0.0, 0.0);
     float best_d = 3.0e38;
     for (uint m = 0u; m < 3u; m++) {
         if (np_same_sign(mu, c[m])) continue;
-        np_simplex e = np_sv_segment(np_simplex_pick(s, (m + 1u) % 3u, (m + 2u) % 3u, 0u, 2u));
-        vec3 v = np_simplex_point(e);
+        // The edge opposite vertex m: its next two, in cyclic order.
+        uint e0 = (m + 1u) % 3u, e1 = (m + 2u) % 3u;
+        vec3 a = np_pick(p0, p1, p2, p2, e0), b = np_pick(p0, p1, p2, p2, e1);
+        uint edge_keep;
+        vec2 l = np_sv_segment(a, b, edge_keep);
+        bool both = edge_keep == 3u;
+        vec3 v = np_simplex_point_of(edge_keep == 2u ? b : a, b, b, both ? vec3(l, 0.0) : vec3(1.0, 0.0, 0.0), both ? 2u : 1u);
         if (dot(v, v) < best_d) {
             best_d = dot(v, v);
-            best = e;
+            best = vec3(0.0);
+            best[e0] = l.x;
+            best[e1] = l.y;
+            keep = (edge_keep & 1u) << e0 | (edge_keep >> 1u) << e1;
         }
     }
     return best;
@@ -182,41 +189,72 @@ float np_volume6(vec3 p, vec3 q, vec3 r, vec3 o)
 }
 
 // Tetrahedron w0..w3: the origin inside it (every weight of the sign of the whole volume)
-// ends the search; else the closest of the faces it lies beyond.
-np_simplex np_sv_tetrahedron(np_simplex s)
+// ends the search; else the closest of the faces it lies beyond. Weights of the four; keep:
+// bits of those that stay.
+vec4 np_sv_tetrahedron(vec3 w0, vec3 w1, vec3 w2, vec3 w3, out uint keep)
 {
     vec3 o = vec3(0.0);
-    vec4 c = vec4(np_volume6(o, s.w[1], s.w[2], s.w[3]), np_volume6(s.w[0], o, s.w[2], s.w[3]),
-                  np_volume6(s.w[0], s.w[1], o, s.w[3]), np_volume6(s.w[0], s.w[1], s.w[2], o));
+    vec4 c = vec4(np_volume6(o, w1, w2, w3), np_volume6(w0, o, w2, w3),
+                  np_volume6(w0, w1, o, w3), np_volume6(w0, w1, w2, o));
     float mu = c.x + c.y + c.z + c.w;
     bool inside = true;
     for (uint m = 0u; m < 4u; m++) inside = inside && np_same_sign(mu, c[m]);
-    if (inside) {
-        s.lambda = c / mu;
-        return s;
-    }
-    np_simplex best = s;
+    keep = 15u;
+    if (inside) return c / mu;
+    keep = 1u;
+    vec4 best = vec4(1.0, 0.0, 0.0, 0.0);
     float best_d = 3.0e38;
     for (uint m = 0u; m < 4u; m++) {
         if (np_same_sign(mu, c[m])) continue;
-        uvec3 f = m == 0u ? uvec3(1u, 2u, 3u)
-                : (m == 1u ? uvec3(0u, 2u, 3u) : (m == 2u ? uvec3(0u, 1u, 3u) : uvec3(0u, 1u, 2u)));
-        np_simplex e = np_sv_triangle(np_simplex_pick(s, f.x, f.y, f.z, 3u));
-        vec3 v = np_simplex_point(e);
+        // The face without vertex m, its vertices in their order.
+        uint f0 = m == 0u ? 1u : 0u, f1 = m <= 1u ? 2u : 1u, f2 = m <= 2u ? 3u : 2u;
+        vec3 p0 = np_pick(w0, w1, w2, w3, f0), p1 = np_pick(w0, w1, w2, w3, f1);
+        vec3 p2 = np_pick(w0, w1, w2, w3, f2);
+        uint face_keep;
+        vec3 l = np_sv_triangle(p0, p1, p2, face_keep);
+        // The kept vertices packed, as the point is taken from them.
+        uint count = bitCount(face_keep);
+        vec3 k0 = (face_keep & 1u) != 0u ? p0 : ((face_keep & 2u) != 0u ? p1 : p2);
+        vec3 k1 = (face_keep & 3u) == 3u ? p1 : p2;
+        float l0 = (face_keep & 1u) != 0u ? l.x : ((face_keep & 2u) != 0u ? l.y : l.z);
+        float l1 = (face_keep & 3u) == 3u ? l.y : l.z;
+        vec3 v = np_simplex_point_of(k0, k1, p2, vec3(l0, count > 1u ? l1 : 0.0, count > 2u ? l.z : 0.0), count);
         if (dot(v, v) < best_d) {
             best_d = dot(v, v);
-            best = e;
+            best = vec4(0.0);
+            best[f0] = l.x;
+            best[f1] = l.y;
+            best[f2] = l.z;
+            keep = (face_keep & 1u) << f0 | ((face_keep >> 1u) & 1u) << f1 | (face_keep >> 2u) << f2;
         }
     }
     return best;
 }
 
+// The simplex reduced to the sub-simplex nearest the origin, packed into its first slots
+// (in their order) with its weights.
 np_simplex np_sv_reduce(np_simplex s)
 {
-    if (s.n == 4u) return np_sv_tetrahedron(s);
-    if (s.n == 3u) return np_sv_triangle(s);
-    if (s.n == 2u) return np_sv_segment(s);
-    s.lambda = vec4(1.0, 0.0, 0.0, 0.0);
+    uint keep = 1u;
+    vec4 l = vec4(1.0, 0.0, 0.0, 0.0);
+    if (s.n == 4u) l = np_sv_tetrahedron(s.w[0], s.w[1], s.w[2], s.w[3], keep);
+    else if (s.n == 3u) l.xyz = np_sv_triangle(s.w[0], s.w[1], s.w[2], keep);
+    else if (s.n == 2u) l.xy = np_sv_segment(s.w[0], s.w[1], keep);
+    // Pack: slot m moves down to the count of kept slots before it (never up).
+    uint n = 0u;
+    [[unroll]] for (uint m = 0u; m < 4u; m++) {
+        if ((keep & (1u << m)) == 0u) continue;
+        [[unroll]] for (uint j = 0u; j < m; j++) {
+            if (j != n) continue;
+            s.w[j] = s.w[m];
+            s.a[j] = s.a[m];
+            l[j] = l[m];
+        }
+        n++;
+    }
+    [[unroll]] for (uint m = 1u; m < 4u; m++) l[m] = m < n ? l[m] : 0.0;
+    s.lambda = l;
+    s.n = n;
     return s;
 }
 
@@ -241,6 +279,7 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
     np_simplex s;
     s.n = 0u;
     s.lambda = vec4(0.0);
+    [[unroll]] for (uint m = 0u; m < 4u; m++) s.w[m] = s.a[m] = vec3(0.0);
     vec3 v = np_core_centre(A) - np_core_centre(B);
     if (dot(v, v) == 0.0) v = vec3(1.0, 0.0, 0.0);
     r.status = NP_GJK_LIMIT;
@@ -286,15 +325,17 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
             break;
         }
         bool repeated = false;
-        for (uint m = 0u; m < s.n; m++) repeated = repeated || s.w[m] == w;
+        [[unroll]] for (uint m = 0u; m < 4u; m++) repeated = repeated || (m < s.n && s.w[m] == w);
         // The distance never grows in exact arithmetic: steps that do not shrink it are
         // float noise in the sub-algorithm, and NP_GJK_STALLS of them in a row end the search.
         if (repeated || stalls >= NP_GJK_STALLS) {
             r.status = NP_GJK_SEPARATED;
             break;
         }
-        s.w[s.n] = w;
-        s.a[s.n] = a;
+        [[unroll]] for (uint m = 0u; m < 4u; m++) {
+            s.w[m] = m == s.n ? w : s.w[m];
+            s.a[m] = m == s.n ? a : s.a[m];
+        }
         s.n++;
         s = np_sv_reduce(s);
         vec3 next = np_simplex_point(s);
