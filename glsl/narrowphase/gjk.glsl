@@ -273,7 +273,9 @@ struct np_gjk_result {
 // lower bound, v the separating direction, no points): contacts ask only whether the shapes
 // come within their margin, and for many of the broadphase's pairs an early support plane
 // already says no.
-np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance)
+// At most `iterations` (NP_GJK_ITERATIONS or fewer) supports.
+np_gjk_result np_gjk_capped(np_convex A, np_convex B, float far, float tolerance,
+                            uint iterations)
 {
     np_gjk_result r;
     np_simplex s;
@@ -291,7 +293,7 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
     float least = 3.0e38;   // the smallest |v|^2 so far
     uint stalls = 0u;
     uint it;
-    for (it = 0u; it < NP_GJK_ITERATIONS; it++) {
+    for (it = 0u; it < iterations; it++) {
         // Supports along the unit v: the shapes' tests of a direction's size (a rim's
         // direction near a cylinder's axis) are then relative, however short v has become.
         float vv = dot(v, v);
@@ -378,6 +380,11 @@ np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance
     r.v = last;
     r.distance = r.status == NP_GJK_OVERLAP ? 0.0 : length(r.pa - r.pb);
     return r;
+}
+
+np_gjk_result np_gjk_within(np_convex A, np_convex B, float far, float tolerance)
+{
+    return np_gjk_capped(A, B, far, tolerance, NP_GJK_ITERATIONS);
 }
 
 // The distance query's GJK: from the centres, to float's tolerance, to the end.

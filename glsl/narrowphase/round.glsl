@@ -560,6 +560,44 @@ float np_bounding_radius(np_body b)
     return length(s.aabb_center.xyz) + length(s.aabb_half.xyz);
 }
 
+// Whether the bounding balls of a and b come within the margin. Most pairs the broadphase
+// finds are apart by more than that, and many of them the balls tell, before GJK's loop.
+bool np_balls_near(np_body a, np_body b, float margin)
+{
+    float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
+    vec3 between = b.pos - a.pos;
+    return dot(between, between) <= reach * reach;
+}
+
+// Whether a convex shape a and a round shape b (first and second of a pair) are surely
+// farther apart than the margin, by what np_round_pair would find first: their bounding
+// balls, the closed form of a sphere or capsule against a capsule, or a support plane
+// within GJK's first NP_CULL_ITERATIONS supports (the same supports, so the same answer).
+// A plane or a mesh is never culled. narrowphase/round_cull runs it over every round pair
+// so that round_points' warps get only pairs with work: a pair that GJK sends away in one
+// or two supports otherwise idles in a warp whose other threads build a manifold.
+#define NP_CULL_ITERATIONS 2u
+bool np_round_apart(np_body a, np_body b, float margin)
+{
+    uint first = a.type;
+    if (first == TB_GPU_SHAPE_PLANE || first == TB_GPU_SHAPE_MESH ||
+        first == TB_GPU_SHAPE_HEIGHTFIELD)
+        return false;
+    if (!np_balls_near(a, b, margin)) return true;
+    np_convex A = np_convex_rounded(a), B = np_convex_rounded(b);
+    vec3 o = np_core_centre(A);
+    vec3 p1, q1, p2, q2, n, pa, pb;
+    if (np_core_segment(A, o, p1, q1) && np_core_segment(B, o, p2, q2))
+        return !np_segments_normal(p1, q1, p2, q2, A.radius, B.radius, margin, n, pa, pb);
+    A = np_convex_moved(A, o);
+    B = np_convex_moved(B, o);
+    np_gjk_result g = np_gjk_capped(A, B, A.radius + B.radius + margin,
+                                    NP_GJK_CONTACT_TOLERANCE, NP_CULL_ITERATIONS);
+    return g.status == NP_GJK_FAR ||
+           (g.status == NP_GJK_SEPARATED && g.iterations < NP_CULL_ITERATIONS &&
+            g.distance - A.radius - B.radius >= margin);
+}
+
 // A plane (first) and a round shape: the shape's feature towards the plane, its corners
 // measured from the plane.
 void np_plane_candidates(np_body plane, np_body b, out vec4 half_space, out uint key,
@@ -607,11 +645,7 @@ bool np_round_pair(np_body a, np_body b, bool on_mesh, np_triangle tri, float ma
         np_core_supports(A, B, -tri.normal, back, top);   // B's farthest along the front
         if (dot(top - tri.v0, tri.normal) + B.radius < 0.0) return false;
     } else {
-        // Most pairs the broadphase finds are apart by more than the margin: their bounding
-        // balls tell, before GJK's loop.
-        float reach = np_bounding_radius(a) + np_bounding_radius(b) + margin;
-        vec3 between = b.pos - a.pos;
-        if (dot(between, between) > reach * reach) return false;
+        if (!np_balls_near(a, b, margin)) return false;
         A = np_convex_rounded(a);
     }
     vec3 n, pa, pb;

@@ -214,6 +214,7 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
     tb_pipeline_destroy(np->kit.pipelines, np->round_count);
     tb_pipeline_destroy(np->kit.pipelines, np->round_order);
+    tb_pipeline_destroy(np->kit.pipelines, np->round_cull);
     tb_pipeline_destroy(np->kit.pipelines, np->round_points);
     tb_pipeline_destroy(np->kit.pipelines, np->keep);
     hull_table_destroy(np);
@@ -269,11 +270,16 @@ tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* l
         r = tb_pipeline_create(p, "narrowphase/round_count", TB_WORKGROUP_SIZE, &np->round_count);
     if (!r && !np->round_order)
         r = tb_pipeline_create(p, "narrowphase/round_order", TB_WORKGROUP_SIZE, &np->round_order);
+    if (!r && !np->round_cull)
+        r = tb_pipeline_create(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
+                               &np->round_cull);
     if (!r && !np->round_points)
         r = tb_pipeline_create(p, "narrowphase/round_points", TB_WIDE_WORKGROUP_SIZE,
                                &np->round_points);
     if (!r) r = per_pair(np, list, np->round_count, counters);
     if (!r) r = per_pair(np, list, np->round_order, counters);
+    if (!r) r = per_pair_at(np, list, np->round_cull, counters,
+                            TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
     return r ? r : per_pair_at(np, list, np->round_points, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }

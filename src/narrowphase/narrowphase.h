@@ -9,9 +9,12 @@
  *                            only their separating axis
  *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
  *                            while the world has hull shapes
- *   narrowphase/round_points the points of every pair with a capsule, cylinder or cone
- *                            (against any convex shape, a plane or a mesh triangle),
- *                            recorded only while the world has such shapes
+ *   narrowphase/round_count, round_order, round_cull, round_points
+ *                            the points of every pair with a capsule, cylinder or cone
+ *                            (against any convex shape, a plane or a mesh triangle):
+ *                            the pairs grouped by kind, those surely apart given their
+ *                            empty manifold, the others' points; recorded only while the
+ *                            world has such shapes
  *   narrowphase/mesh_points  the points of each pair of a body and a mesh triangle (the
  *                            broadphase split the body pair by triangle), then
  *   narrowphase/mesh_reduce  at most four of them per body pair; both recorded only while
@@ -50,7 +53,7 @@ typedef struct tb_narrowphase {
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
     /// made when the world's first round shape comes: the round pairs counted and grouped
     /// by kind, then their points
-    VkPipeline round_count, round_order, round_points;
+    VkPipeline round_count, round_order, round_cull, round_points;
     tb_hull_table hulls;
 } tb_narrowphase;
 
@@ -78,8 +81,9 @@ tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_li
 /// while the world has mesh shapes; their pipelines are made the first time).
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
-/// narrowphase/round_points, the points of the pairs with a capsule, cylinder or cone
-/// (recorded only while the world has such shapes; its pipeline is made the first time).
+/// narrowphase/round_count, round_order, round_cull and round_points, the points of the pairs
+/// with a capsule, cylinder or cone (recorded only while the world has such shapes; their
+/// pipelines are made the first time).
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
                                              VkBuffer counters);
 /// narrowphase/keep.
