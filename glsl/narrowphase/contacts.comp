@@ -77,8 +77,6 @@ uint pair_contacts(uint p)
     // block solver's stiffness of the pair (w) carries over.
     uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
     manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
-    // A capsule, cylinder or cone comes last in the canonical order: round_points.comp's.
-    if (np_is_round(q.second.type)) return 0u;
     uint count = np_collide(q.t, q.first, q.second, q.margin, normal);
     np_pair_finish(q, count, normal);
     return count;
@@ -89,7 +87,9 @@ void main()
     // An abandoned step (overflow upstream) leaves last step's results alone.
     if (counters.state.x != 0u) return;
     uint p = pair_thread_index();
-    // A mesh triangle's pair is mesh_points.comp's, whole.
-    bool mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]);
+    // A mesh triangle's pair is mesh_points.comp's, whole; a pair with a capsule, cylinder
+    // or cone is round_points.comp's.
+    bool mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]) &&
+                np_round_kind(p) == TB_ROUND_KINDS;
     np_count_points(mine ? pair_contacts(p) : 0u);
 }

@@ -572,11 +572,12 @@ bool np_balls_near(np_body a, np_body b, float margin)
 // Whether a convex shape a and a round shape b (first and second of a pair) are surely
 // farther apart than the margin, by what np_round_pair would find first: their bounding
 // balls, the closed form of a sphere or capsule against a capsule, or a support plane
-// within GJK's first NP_CULL_ITERATIONS supports (the same supports, so the same answer).
+// within GJK's first NP_CULL_ITERATIONS supports (the same supports, so the same answer;
+// one: more cost more than they cull).
 // A plane or a mesh is never culled. narrowphase/round_cull runs it over every round pair
 // so that round_points' warps get only pairs with work: a pair that GJK sends away in one
 // or two supports otherwise idles in a warp whose other threads build a manifold.
-#define NP_CULL_ITERATIONS 2u
+#define NP_CULL_ITERATIONS 1u
 bool np_round_apart(np_body a, np_body b, float margin)
 {
     uint first = a.type;

@@ -261,8 +261,8 @@ tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* li
     return r;
 }
 
-tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
-                                             VkBuffer counters)
+tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* list,
+                                           VkBuffer counters)
 {
     tb_pipelines* p = np->kit.pipelines;
     tb_result r = TB_OK;
@@ -273,13 +273,19 @@ tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* l
     if (!r && !np->round_cull)
         r = tb_pipeline_create(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
                                &np->round_cull);
-    if (!r && !np->round_points)
-        r = tb_pipeline_create(p, "narrowphase/round_points", TB_WIDE_WORKGROUP_SIZE,
-                               &np->round_points);
     if (!r) r = per_pair(np, list, np->round_count, counters);
     if (!r) r = per_pair(np, list, np->round_order, counters);
-    if (!r) r = per_pair_at(np, list, np->round_cull, counters,
-                            TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
+    return r ? r : per_pair_at(np, list, np->round_cull, counters,
+                               TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
+}
+
+tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
+                                             VkBuffer counters)
+{
+    tb_result r = TB_OK;
+    if (!np->round_points)
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points",
+                               TB_WIDE_WORKGROUP_SIZE, &np->round_points);
     return r ? r : per_pair_at(np, list, np->round_points, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }

@@ -81,9 +81,13 @@ tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_li
 /// while the world has mesh shapes; their pipelines are made the first time).
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
-/// narrowphase/round_count, round_order, round_cull and round_points, the points of the pairs
-/// with a capsule, cylinder or cone (recorded only while the world has such shapes; their
-/// pipelines are made the first time).
+/// narrowphase/round_count, round_order and round_cull: the pairs with a capsule, cylinder or
+/// cone grouped by kind, those surely apart given their empty manifold and the others listed
+/// for round_points (recorded only while the world has such shapes, before round_points;
+/// their pipelines are made the first time).
+tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* list,
+                                           VkBuffer counters);
+/// narrowphase/round_points, the points of the round pairs round_cull listed.
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
                                              VkBuffer counters);
 /// narrowphase/keep.

@@ -98,8 +98,8 @@ static void broadphase_stage(builder* b)
 /* Manifolds of every pair (narrowphase/contacts), then the points of the touching hull pairs
  * (narrowphase/hull_points, see contacts.comp), a stage of its own so the stats tell the two
  * apart, recorded only while the world has hull shapes (box pairs never defer theirs); then
- * the pairs with a capsule, cylinder or cone (narrowphase/round_points), while it has such
- * shapes; then the mesh pairs' (narrowphase/mesh_points), while it has mesh shapes. */
+ * the pairs with a capsule, cylinder or cone, while it has such shapes: those apart sorted
+ * out (narrowphase/round_cull), the others' points (narrowphase/round_points); then the mesh pairs' (narrowphase/mesh_points), while it has mesh shapes. */
 static void narrowphase_stage(builder* b)
 {
     tb_world* w = b->w;
@@ -110,6 +110,9 @@ static void narrowphase_stage(builder* b)
         end_stage(b, "narrowphase/hull_points");
     }
     if (w->round_shapes) {
+        if (!b->r) b->r = tb_narrowphase_record_round_cull(&w->narrowphase, &b->list,
+                                                           b->counters);
+        end_stage(b, "narrowphase/round_cull");
         if (!b->r) b->r = tb_narrowphase_record_round_points(&w->narrowphase, &b->list,
                                                              b->counters);
         end_stage(b, "narrowphase/round_points");
