@@ -40,6 +40,13 @@ bool np_same_sign(float x, float y)
     return (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
 }
 
+// Component i of v by selects, as np_comp (manifold.glsl) for a vec3: a component picked by
+// a computed index is a private array the GPU compiler keeps in memory.
+float np_comp4(vec4 v, uint i)
+{
+    return i == 0u ? v.x : (i == 1u ? v.y : (i == 2u ? v.z : v.w));
+}
+
 // Vertex i (0-3) of four, by selects.
 vec3 np_pick(vec3 p0, vec3 p1, vec3 p2, vec3 p3, uint i)
 {
@@ -115,9 +122,10 @@ vec2 np_sv_segment(vec3 p, vec3 q, out uint keep)
     vec3 x = p - t * (dot(p, t) / tt);
     vec3 at = abs(t);
     uint k = at.x >= at.y && at.x >= at.z ? 0u : (at.y >= at.z ? 1u : 2u);
-    float mu = p[k] - q[k];
-    float c0 = x[k] - q[k];    // p's weight times mu
-    float c1 = p[k] - x[k];    // q's
+    float pk = np_comp(p, k), qk = np_comp(q, k), xk = np_comp(x, k);
+    float mu = pk - qk;
+    float c0 = xk - qk;    // p's weight times mu
+    float c1 = pk - xk;    // q's
     if (np_same_sign(mu, c0) && np_same_sign(mu, c1)) {
         keep = 3u;
         return vec2(c0, c1) / (c0 + c1);
@@ -150,8 +158,8 @@ vec3 np_sv_triangle(vec3 p0, vec3 p1, vec3 p2, out uint keep)
     // the sign of that component of n.
     uint k = an.x >= an.y && an.x >= an.z ? 0u : (an.y >= an.z ? 1u : 2u);
     uint i = (k + 1u) % 3u, j = (k + 2u) % 3u;
-    vec2 q0 = vec2(p0[i], p0[j]), q1 = vec2(p1[i], p1[j]);
-    vec2 q2 = vec2(p2[i], p2[j]), pp = vec2(p[i], p[j]);
+    vec2 q0 = vec2(np_comp(p0, i), np_comp(p0, j)), q1 = vec2(np_comp(p1, i), np_comp(p1, j));
+    vec2 q2 = vec2(np_comp(p2, i), np_comp(p2, j)), pp = vec2(np_comp(p, i), np_comp(p, j));
     float mu = np_area2(q0, q1, q2);
     vec3 c = vec3(np_area2(pp, q1, q2), np_area2(q0, pp, q2), np_area2(q0, q1, pp));
     keep = 7u;
@@ -163,7 +171,7 @@ vec3 np_sv_triangle(vec3 p0, vec3 p1, vec3 p2, out uint keep)
     vec3 best = vec3(1.0, 0.0, 0.0);
     float best_d = 3.0e38;
     for (uint m = 0u; m < 3u; m++) {
-        if (np_same_sign(mu, c[m])) continue;
+        if (np_same_sign(mu, np_comp(c, m))) continue;
         // The edge opposite vertex m: its next two, in cyclic order.
         uint e0 = (m + 1u) % 3u, e1 = (m + 2u) % 3u;
         vec3 a = np_pick(p0, p1, p2, p2, e0), b = np_pick(p0, p1, p2, p2, e1);
@@ -173,9 +181,9 @@ vec3 np_sv_triangle(vec3 p0, vec3 p1, vec3 p2, out uint keep)
         vec3 v = np_simplex_point_of(edge_keep == 2u ? b : a, b, b, both ? vec3(l, 0.0) : vec3(1.0, 0.0, 0.0), both ? 2u : 1u);
         if (dot(v, v) < best_d) {
             best_d = dot(v, v);
-            best = vec3(0.0);
-            best[e0] = l.x;
-            best[e1] = l.y;
+            best = vec3(e0 == 0u ? l.x : (e1 == 0u ? l.y : 0.0),
+                        e0 == 1u ? l.x : (e1 == 1u ? l.y : 0.0),
+                        e0 == 2u ? l.x : (e1 == 2u ? l.y : 0.0));
             keep = (edge_keep & 1u) << e0 | (edge_keep >> 1u) << e1;
         }
     }
@@ -198,14 +206,14 @@ vec4 np_sv_tetrahedron(vec3 w0, vec3 w1, vec3 w2, vec3 w3, out uint keep)
                   np_volume6(w0, w1, o, w3), np_volume6(w0, w1, w2, o));
     float mu = c.x + c.y + c.z + c.w;
     bool inside = true;
-    for (uint m = 0u; m < 4u; m++) inside = inside && np_same_sign(mu, c[m]);
+    [[unroll]] for (uint m = 0u; m < 4u; m++) inside = inside && np_same_sign(mu, c[m]);
     keep = 15u;
     if (inside) return c / mu;
     keep = 1u;
     vec4 best = vec4(1.0, 0.0, 0.0, 0.0);
     float best_d = 3.0e38;
     for (uint m = 0u; m < 4u; m++) {
-        if (np_same_sign(mu, c[m])) continue;
+        if (np_same_sign(mu, np_comp4(c, m))) continue;
         // The face without vertex m, its vertices in their order.
         uint f0 = m == 0u ? 1u : 0u, f1 = m <= 1u ? 2u : 1u, f2 = m <= 2u ? 3u : 2u;
         vec3 p0 = np_pick(w0, w1, w2, w3, f0), p1 = np_pick(w0, w1, w2, w3, f1);
@@ -221,10 +229,9 @@ vec4 np_sv_tetrahedron(vec3 w0, vec3 w1, vec3 w2, vec3 w3, out uint keep)
         vec3 v = np_simplex_point_of(k0, k1, p2, vec3(l0, count > 1u ? l1 : 0.0, count > 2u ? l.z : 0.0), count);
         if (dot(v, v) < best_d) {
             best_d = dot(v, v);
-            best = vec4(0.0);
-            best[f0] = l.x;
-            best[f1] = l.y;
-            best[f2] = l.z;
+            // The face's vertices f0 < f1 < f2 are three of the four, all but m.
+            best = m == 0u ? vec4(0.0, l) : (m == 1u ? vec4(l.x, 0.0, l.yz)
+                 : (m == 2u ? vec4(l.xy, 0.0, l.z) : vec4(l, 0.0)));
             keep = (face_keep & 1u) << f0 | ((face_keep >> 1u) & 1u) << f1 | (face_keep >> 2u) << f2;
         }
     }
