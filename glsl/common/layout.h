@@ -71,7 +71,8 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       Before the solver, in the narrowphase, the first list
                                       is the round pairs grouped by kind
                                       (narrowphase/round_order), the second those of them
-                                      round_cull leaves to round_points */
+                                      round_cull leaves to round_points (before that, each
+                                      pair's kind, from round_count for round_order) */
 /* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
  * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
  * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how

@@ -8,11 +8,9 @@
 // in layers ran the kernel a quarter faster than a shuffled one). Each workgroup ranks its
 // pairs of a kind in shared memory and claims a run of the kind's range with one atomic;
 // the order within a kind follows the claims (round_points' results do not depend on it).
-// One thread per pair, dispatched indirectly over counters.pair_dispatch, after round_count.
+// One thread per pair, dispatched indirectly over counters.pair_dispatch, after round_count
+// (which left each pair's kind in colour_work's second list).
 #include "world.glsl"
-#include "quat.glsl"
-#include "manifold.glsl"
-#include "pair.glsl"
 
 shared uint kind_count[TB_ROUND_KINDS];
 shared uint kind_start[TB_ROUND_KINDS];
@@ -24,7 +22,7 @@ void main()
     barrier();
     uint p = pair_thread_index();
     bool live = !step_aborted() && p < counters.state.z;
-    uint kind = live ? np_round_kind(p) : TB_ROUND_KINDS;
+    uint kind = live ? colour_work[params.capacity.x + p] : TB_ROUND_KINDS;   // round_count's
     uint rank = kind < TB_ROUND_KINDS ? atomicAdd(kind_count[kind], 1u) : 0u;
     barrier();
     for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x) {
