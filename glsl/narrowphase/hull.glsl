@@ -68,10 +68,29 @@ uvec2 np_hull_ring_entry(np_hull h, uint k)
     return np_unpack16(hull_topology[h.base.z + 2u * h.edges + h.vertices + k]);
 }
 
-// The vertex of h farthest along d, climbing from vertex `start` to a neighbour farther
-// along d while there is one: on a convex hull the climb ends at the farthest vertex.
+// Hulls of up to this many vertices find a support by looking at every vertex: their
+// loads are independent and go out together, where a climb waits on each step's ring, its
+// entries and their vertices in turn (on an H100 the look took GJK's supports in the shapes
+// pile from 1.45 to 1.34 ms and the separating axis tests of 100k hulls from 3.71 to 3.23).
+#define NP_HULL_SCAN_VERTICES 64u
+
+// The vertex of h farthest along d: the first of the farthest among all vertices (hulls of
+// up to NP_HULL_SCAN_VERTICES), else climbing from vertex `start` to a neighbour farther
+// along d while there is one (on a convex hull the climb ends at the farthest vertex).
 uint np_hull_support(np_hull h, vec3 d, uint start)
 {
+    if (h.vertices <= NP_HULL_SCAN_VERTICES) {
+        uint v = 0u;
+        float best = dot(d, np_hull_vertex(h, 0u));
+        for (uint i = 1u; i < h.vertices; i++) {
+            float s = dot(d, np_hull_vertex(h, i));
+            if (s > best) {
+                best = s;
+                v = i;
+            }
+        }
+        return v;
+    }
     uint v = start;
     float best = dot(d, np_hull_vertex(h, v));
     for (uint steps = 0u; steps < h.vertices; steps++) {
