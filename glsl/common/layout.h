@@ -70,9 +70,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       write in turn (tb_gpu_counters.colouring counts them).
                                       Before the solver, in the narrowphase, the first list
                                       is the round pairs grouped by kind
-                                      (narrowphase/round_order), the second those of them
-                                      round_cull leaves to round_points (before that, each
-                                      pair's kind, from round_count for round_order) */
+                                      (narrowphase/round_order: those round_cull leaves to
+                                      round_points); the second each pair's kind, from
+                                      round_cull for round_count and round_order */
 /* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
  * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
  * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
@@ -237,8 +237,8 @@ TB_STRUCT(tb_gpu_counters) {
                                  last completed step (its manifolds are prev_manifolds), w unused */
     TB_UVEC4 wide_pair_dispatch; /* xyz: as pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE */
     TB_UVEC4 round_kinds[TB_ROUND_KINDS]; /* the round pairs of each kind (narrowphase/round_order):
-                                 x how many, y placed so far; [0].w all of them, [0].z
-                                 those narrowphase/round_cull leaves to round_points */
+                                 x how many, y placed so far; [0].w all of them (those
+                                 narrowphase/round_cull leaves to round_points) */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)

@@ -2,11 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-// The round pairs of each kind (pair.glsl's np_round_kind), counted into
-// counters.round_kinds[].x for round_order: a histogram per workgroup in shared memory, then
-// one atomic per kind a workgroup met. Each pair's kind (TB_ROUND_KINDS: none) goes to the
-// second list of colour_work, free until round_cull, for round_order. One thread per pair,
-// dispatched indirectly over counters.pair_dispatch.
+// The round pairs round_cull left for round_points, of each kind (round_cull wrote each
+// pair's kind in colour_work's second list), counted into counters.round_kinds[].x for
+// round_order: a histogram per workgroup in shared memory, then one atomic per kind a
+// workgroup met. One thread per pair, dispatched indirectly over counters.pair_dispatch.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"
@@ -21,8 +20,7 @@ void main()
     barrier();
     uint p = pair_thread_index();
     bool live = !step_aborted() && p < counters.state.z;
-    uint kind = live ? np_round_kind(p) : TB_ROUND_KINDS;
-    if (live) colour_work[params.capacity.x + p] = kind;
+    uint kind = live ? colour_work[params.capacity.x + p] : TB_ROUND_KINDS;
     if (kind < TB_ROUND_KINDS) atomicAdd(kind_count[kind], 1u);
     barrier();
     for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x)

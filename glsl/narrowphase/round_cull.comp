@@ -2,15 +2,16 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-#extension GL_KHR_shader_subgroup_ballot : require
-// The round pairs (round_order's list, grouped by kind) that are surely apart get their
-// empty manifold here (np_round_apart: bounding balls, the capsules' closed form, GJK's
-// first supports); the others are listed again after the first list in colour_work
-// (counters.round_kinds[0].z of them) for round_points, a subgroup's together, so the list
-// stays mostly grouped by kind (its order varies from run to run; no result depends on it). Most of a pile's
-// round pairs are apart, and one GJK support or two tell; in round_points their threads would
-// idle beside those that build a manifold. A thread per round pair, dispatched indirectly over
-// counters.wide_pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE.
+// The first pass over the round pairs (pair.glsl's np_round_kind): those surely apart get
+// their empty manifold here (np_round_apart: bounding balls, the capsules' closed form,
+// GJK's first support); the kind of each pair left for round_points (TB_ROUND_KINDS for
+// none: not round, or apart) goes to colour_work's second list, free until the solver, for
+// round_count and round_order, which group those pairs by kind. Most of a pile's round
+// pairs are apart, and one GJK support tells; in round_points their threads would idle
+// beside those that build a manifold. The pairs are taken in their own order, not grouped:
+// neighbouring pairs share bodies, and the loads of a warp then meet in the caches (grouped
+// by kind first, this pass took a third longer). A thread per pair, dispatched indirectly
+// over counters.wide_pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"
@@ -41,14 +42,9 @@ bool cull(uint p)
 
 void main()
 {
-    if (counters.state.x != 0u) return;
-    uint t = pair_thread_index();
-    bool mine = t < counters.round_kinds[0].w;
-    uint p = mine ? colour_work[t] : 0u;
-    bool listed = mine && !cull(p);
-    uvec4 ballot = subgroupBallot(listed);
-    uint count = subgroupBallotBitCount(ballot), base = 0u;
-    if (subgroupElect() && count != 0u) base = atomicAdd(counters.round_kinds[0].z, count);
-    base = subgroupBroadcastFirst(base);
-    if (listed) colour_work[params.capacity.x + base + subgroupBallotExclusiveBitCount(ballot)] = p;
+    uint p = pair_thread_index();
+    if (step_aborted() || p >= counters.state.z) return;
+    uint kind = np_round_kind(p);
+    if (kind < TB_ROUND_KINDS && cull(p)) kind = TB_ROUND_KINDS;
+    colour_work[params.capacity.x + p] = kind;
 }

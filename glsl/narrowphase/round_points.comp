@@ -6,7 +6,7 @@
 // shape (GJK, EPA), a plane, or a mesh triangle (contacts.comp and mesh_points.comp leave
 // these pairs alone). Recorded after hull_points and before mesh_points while the world has
 // such shapes, so mesh_reduce sees the triangle pairs' points. A thread per round pair that
-// round_cull did not find apart, as it listed them (mostly grouped by kind); dispatched
+// round_cull did not find apart, as round_order listed them (grouped by kind); dispatched
 // indirectly over counters.wide_pair_dispatch (enough for every pair), in workgroups of
 // TB_WIDE_WORKGROUP_SIZE.
 //
@@ -49,6 +49,6 @@ void main()
     if (counters.state.x != 0u) return;
     // The round pairs round_cull left, grouped by kind (round_order).
     uint t = pair_thread_index();
-    bool mine = t < counters.round_kinds[0].z;
-    np_count_points(mine ? round_points(colour_work[params.capacity.x + t]) : 0u);
+    bool mine = t < counters.round_kinds[0].w;
+    np_count_points(mine ? round_points(colour_work[t]) : 0u);
 }

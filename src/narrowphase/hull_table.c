@@ -273,10 +273,10 @@ tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* lis
     if (!r && !np->round_cull)
         r = tb_pipeline_create(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
                                &np->round_cull);
+    if (!r) r = per_pair_at(np, list, np->round_cull, counters,
+                            TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
     if (!r) r = per_pair(np, list, np->round_count, counters);
-    if (!r) r = per_pair(np, list, np->round_order, counters);
-    return r ? r : per_pair_at(np, list, np->round_cull, counters,
-                               TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
+    return r ? r : per_pair(np, list, np->round_order, counters);
 }
 
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,

@@ -9,11 +9,11 @@
  *                            only their separating axis
  *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
  *                            while the world has hull shapes
- *   narrowphase/round_count, round_order, round_cull, round_points
+ *   narrowphase/round_cull, round_count, round_order, round_points
  *                            the points of every pair with a capsule, cylinder or cone
  *                            (against any convex shape, a plane or a mesh triangle):
- *                            the pairs grouped by kind, those surely apart given their
- *                            empty manifold, the others' points; recorded only while the
+ *                            those surely apart given their empty manifold, the others
+ *                            grouped by kind, then their points; recorded only while the
  *                            world has such shapes
  *   narrowphase/mesh_points  the points of each pair of a body and a mesh triangle (the
  *                            broadphase split the body pair by triangle), then
@@ -81,10 +81,10 @@ tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_li
 /// while the world has mesh shapes; their pipelines are made the first time).
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
-/// narrowphase/round_count, round_order and round_cull: the pairs with a capsule, cylinder or
-/// cone grouped by kind, those surely apart given their empty manifold and the others listed
-/// for round_points (recorded only while the world has such shapes, before round_points;
-/// their pipelines are made the first time).
+/// narrowphase/round_cull, round_count and round_order: the pairs with a capsule, cylinder or
+/// cone that are surely apart given their empty manifold, the others grouped by kind for
+/// round_points (recorded only while the world has such shapes, before round_points; their
+/// pipelines are made the first time).
 tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* list,
                                            VkBuffer counters);
 /// narrowphase/round_points, the points of the round pairs round_cull listed.

@@ -99,7 +99,9 @@ static void broadphase_stage(builder* b)
  * (narrowphase/hull_points, see contacts.comp), a stage of its own so the stats tell the two
  * apart, recorded only while the world has hull shapes (box pairs never defer theirs); then
  * the pairs with a capsule, cylinder or cone, while it has such shapes: those apart sorted
- * out (narrowphase/round_cull), the others' points (narrowphase/round_points); then the mesh pairs' (narrowphase/mesh_points), while it has mesh shapes. */
+ * out and the others grouped by kind (narrowphase/round_cull), then their points
+ * (narrowphase/round_points); then the mesh pairs' (narrowphase/mesh_points), while it has
+ * mesh shapes. */
 static void narrowphase_stage(builder* b)
 {
     tb_world* w = b->w;
