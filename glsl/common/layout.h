@@ -163,9 +163,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 
 /* Threads per workgroup of per-body stages. */
 #define TB_WORKGROUP_SIZE       64
-/* Threads per workgroup of narrowphase/round_points (counters.wide_pair_dispatch): its
- * threads need about 250 registers, and in groups of 256 rather than 64 the pass took 14 %
- * less time on an H100 (groups of 512 cap the registers at 128 and spill: slower). */
+/* Threads per workgroup of narrowphase/round_cull and round_points
+ * (counters.wide_pair_dispatch): when round_points' threads needed about 250 registers, it
+ * took 14 % less time in groups of 256 than of 64 on an H100 (groups of 512 capped the
+ * registers at 128 and spilled: slower); it needs 128 now. */
 #define TB_WIDE_WORKGROUP_SIZE  256
 /* Kinds of the pairs with a capsule, cylinder or cone, as narrowphase/round_order groups them
  * for round_points: the other shape's TB_GPU_SHAPE_* times 3 plus the round shape's

@@ -73,10 +73,8 @@ uint pair_contacts(uint p)
     }
     np_pair q = np_pair_load(p);
     vec3 normal;
-    // The separating axis a hull pair caches for the next step; other pairs have none. The
-    // block solver's stiffness of the pair (w) carries over.
-    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
-    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    // The separating axis a hull pair caches for the next step; other pairs have none.
+    np_pair_start(q);
     uint count = np_collide(q.t, q.first, q.second, q.margin, normal);
     np_pair_finish(q, count, normal);
     return count;

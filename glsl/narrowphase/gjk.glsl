@@ -90,12 +90,6 @@ vec3 np_simplex_point_of(vec3 p0, vec3 p1, vec3 p2, vec3 l, uint n)
     return v;
 }
 
-vec3 np_simplex_point(np_simplex s)
-{
-    if (s.n == 4u) return s.lambda.x * s.w[0] + s.lambda.y * s.w[1] + s.lambda.z * s.w[2] + s.lambda.w * s.w[3];
-    return np_simplex_point_of(s.w[0], s.w[1], s.w[2], s.lambda.xyz, s.n);
-}
-
 // The weighted sums of the simplex's w and of its a (weights beyond n are zero).
 vec3 np_simplex_sum(np_simplex s)
 {
@@ -105,6 +99,12 @@ vec3 np_simplex_sum(np_simplex s)
 vec3 np_simplex_a(np_simplex s)
 {
     return s.lambda.x * s.a[0] + s.lambda.y * s.a[1] + s.lambda.z * s.a[2] + s.lambda.w * s.a[3];
+}
+
+vec3 np_simplex_point(np_simplex s)
+{
+    if (s.n == 4u) return np_simplex_sum(s);
+    return np_simplex_point_of(s.w[0], s.w[1], s.w[2], s.lambda.xyz, s.n);
 }
 
 // The sub-algorithm gives weights over the vertices it was handed, zero for those it drops

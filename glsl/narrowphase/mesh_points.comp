@@ -25,9 +25,7 @@ uint mesh_points(uint p)
     np_pair q = np_pair_load(p);
     // A capsule, cylinder or cone against a triangle: round_points.comp's.
     if (np_is_round(q.second.type)) return 0u;
-    // As contacts.comp: the block solver's stiffness of the pair carries over.
-    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
-    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    np_pair_start(q);
     vec3 normal = vec3(0.0);
     uint count = 0u;
     np_body shape = q.first, mesh = q.second;   // the mesh comes after the other convex shapes

@@ -58,6 +58,14 @@ np_pair np_pair_load(uint p)
     return q;
 }
 
+// The manifold's cached axis cleared, but for the block solver's stiffness of the pair (w),
+// which carries over from last step's manifold; every pass that writes a manifold starts so.
+void np_pair_start(np_pair q)
+{
+    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
+    manifolds[q.t.slot].axis = uvec4(0u, 0u, 0u, stiffness);
+}
+
 // Normal (from first to second) back to a to b, and the pair's combined materials.
 void np_pair_finish(np_pair q, uint count, vec3 normal)
 {

@@ -7,9 +7,6 @@
 // round_order: a histogram per workgroup in shared memory, then one atomic per kind a
 // workgroup met. One thread per pair, dispatched indirectly over counters.pair_dispatch.
 #include "world.glsl"
-#include "quat.glsl"
-#include "manifold.glsl"
-#include "pair.glsl"
 
 shared uint kind_count[TB_ROUND_KINDS];
 

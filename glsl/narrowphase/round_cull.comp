@@ -34,8 +34,7 @@ bool cull(uint p)
     np_pair q = np_pair_load(p);
     if (!np_round_apart(q.first, q.second, q.margin)) return false;
     // As round_points with no points.
-    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
-    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    np_pair_start(q);
     np_pair_finish(q, 0u, vec3(0.0, 1.0, 0.0));
     return true;
 }

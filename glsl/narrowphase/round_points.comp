@@ -31,9 +31,7 @@
 uint round_points(uint p)
 {
     np_pair q = np_pair_load(p);
-    // As contacts.comp: the block solver's stiffness of the pair carries over.
-    uint stiffness = q.t.prev != NP_NONE ? prev_manifolds[q.t.prev].axis.w : 0u;
-    manifolds[p].axis = uvec4(0u, 0u, 0u, stiffness);
+    np_pair_start(q);
     vec3 normal;
     uint first = q.first.type;
     bool on_mesh = first == TB_GPU_SHAPE_MESH || first == TB_GPU_SHAPE_HEIGHTFIELD;

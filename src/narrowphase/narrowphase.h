@@ -51,8 +51,8 @@ typedef struct tb_narrowphase {
     tb_gpu_kit kit;
     VkPipeline contacts, hull_points, keep;
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
-    /// made when the world's first round shape comes: the round pairs counted and grouped
-    /// by kind, then their points
+    /// made when the world's first round shape comes: the round pairs apart sorted out, the
+    /// others counted and grouped by kind, then their points
     VkPipeline round_count, round_order, round_cull, round_points;
     tb_hull_table hulls;
 } tb_narrowphase;
