@@ -206,13 +206,13 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
             VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, w->pipelines.layout, 0, 1,
                             &w->pipelines.set, 0, NULL);
+    /* Over every pair (push constant x 0), as a world without round shapes runs them. */
+    VkBuffer counters = r->dev[BUF_COUNTERS].buffer;
     tb_pass passes[2] = {
-        { .pipeline = r->pipeline, .rule = TB_DISPATCH_INDIRECT,
-          .indirect = r->dev[BUF_COUNTERS].buffer,
-          .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET },
-        { .pipeline = r->hull_points, .rule = TB_DISPATCH_INDIRECT,
-          .indirect = r->dev[BUF_COUNTERS].buffer,
-          .indirect_offset = TB_COUNTERS_PAIR_DISPATCH_OFFSET },
+        tb_pass_with_args(r->pipeline, TB_DISPATCH_INDIRECT, counters,
+                          TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0),
+        tb_pass_with_args(r->hull_points, TB_DISPATCH_INDIRECT, counters,
+                          TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0),
     };
     tb_passes_record(cb, w->pipelines.layout, passes, 2, w->params_buffer.buffer);
     barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,

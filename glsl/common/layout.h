@@ -72,14 +72,17 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       is the round pairs grouped by kind
                                       (narrowphase/round_order: those round_cull leaves to
                                       round_points); the second each pair's kind, from
-                                      round_cull for round_count and round_order */
+                                      round_cull for round_order */
 /* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
  * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
  * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
  * many pairs a step can hold; memory does (world.glsl names them like arrays):
  *   manifolds       tb_gpu_manifold[pair cap]: this step's, indexed like its pairs
  *   prev_manifolds  tb_gpu_manifold[pair cap]: last step's, indexed like its pairs (the
- *                   other half); the warm start reads them
+ *                   other half); the warm start reads them. The two arrays trade places
+ *                   after every step (the host sets them by the step's parity, and the
+ *                   step's command buffer swaps their addresses at its end), so this
+ *                   step's manifolds become last step's where they lie
  *   constraints     tb_gpu_constraint[pair cap]: solver data of this step
  *   block_entries   uvec2[8 * pair cap], only in a world that uses the block solver: the
  *                   contact lists of its dynamic bodies, an entry per contact point, grouped
@@ -168,10 +171,13 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * took 14 % less time in groups of 256 than of 64 on an H100 (groups of 512 capped the
  * registers at 128 and spilled: slower); it needs 128 now. */
 #define TB_WIDE_WORKGROUP_SIZE  256
-/* Kinds of the pairs with a capsule, cylinder or cone, as narrowphase/round_order groups them
- * for round_points: the other shape's TB_GPU_SHAPE_* times 3 plus the round shape's
- * (capsule 0, cylinder 1, cone 2). */
+/* Kinds of pairs, as narrowphase/round_order groups them while round shapes live: of the
+ * pairs with a capsule, cylinder or cone, for round_points, the other shape's
+ * TB_GPU_SHAPE_* times 3 plus the round shape's (capsule 0, cylinder 1, cone 2), under 30;
+ * then contacts.comp's, those with a hull and the others (sphere, box, plane). */
 #define TB_ROUND_KINDS          32
+#define TB_PAIR_KIND_HULL       TB_U(30)
+#define TB_PAIR_KIND_CONVEX     TB_U(31)
 /* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
 /* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed
@@ -237,8 +243,9 @@ TB_STRUCT(tb_gpu_counters) {
                                  those and zeroes x and y before a submission), z pairs of the
                                  last completed step (its manifolds are prev_manifolds), w unused */
     TB_UVEC4 wide_pair_dispatch; /* xyz: as pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE */
-    TB_UVEC4 round_kinds[TB_ROUND_KINDS]; /* the round pairs of each kind (narrowphase/round_order):
-                                 x how many, y placed so far; [0].w all of them (those
+    TB_UVEC4 round_kinds[TB_ROUND_KINDS]; /* the pairs of each kind (TB_ROUND_KINDS) listed by
+                                 narrowphase/round_order: x how many, y placed so far, z
+                                 where they start; [0].w the round ones (those
                                  narrowphase/round_cull leaves to round_points) */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0

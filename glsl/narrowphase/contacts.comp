@@ -4,7 +4,9 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // Narrowphase: one thread per pair of this step turns the pair into a contact manifold of
 // up to four points sharing one normal, with the impulses of last step's points of the same
-// features (warm start). Dispatched indirectly over counters.pair_dispatch.
+// features (warm start). Dispatched indirectly over counters.pair_dispatch. While round
+// shapes live (push.args.x set) the pairs are those round_order listed of the kinds
+// TB_PAIR_KIND_HULL and TB_PAIR_KIND_CONVEX, grouped so, rather than every pair.
 //
 // Hull pairs that touch get only their separating axis here; hull_points.comp, the next
 // pass, clips and reduces their points. The clipper's polygons (128 vec4 per thread) and
@@ -30,6 +32,8 @@
 #include "hull_plane.glsl"
 #include "hull_sphere.glsl"
 #include "pair.glsl"
+
+layout(push_constant) uniform Push { tb_gpu_push push; };
 
 // Shape types in canonical order: sphere < box < plane < hull < mesh < capsule, cylinder,
 // cone, so each routine knows which shape comes first. Mesh pairs never come here
@@ -84,10 +88,15 @@ void main()
 {
     // An abandoned step (overflow upstream) leaves last step's results alone.
     if (counters.state.x != 0u) return;
-    uint p = pair_thread_index();
-    // A mesh triangle's pair is mesh_points.comp's, whole; a pair with a capsule, cylinder
-    // or cone is round_points.comp's.
-    bool mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]) &&
-                np_round_kind(p) == TB_ROUND_KINDS;
+    uint t = pair_thread_index(), p = t;
+    bool mine;
+    if (push.args.x != 0u) {
+        // While round shapes live, round_order listed this pass's pairs (np_kind_run).
+        p = np_listed_pair(t, np_kind_run(TB_PAIR_KIND_HULL, TB_PAIR_KIND_CONVEX));
+        mine = p != NP_NONE;
+    } else {
+        // Otherwise a thread per pair; a mesh triangle's pair is mesh_points.comp's, whole.
+        mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]);
+    }
     np_count_points(mine ? pair_contacts(p) : 0u);
 }

@@ -5,7 +5,8 @@
 // Narrowphase, second pass: the points of the hull pairs the first pass (contacts.comp)
 // found touching and marked (manifolds[p].axis.z, the axis of largest separation, never 0),
 // from the axis it cached there: clipping and reduction for a face axis, the closest edge
-// points for an edge axis (hull_hull.glsl step 4). One thread per pair; unmarked pairs
+// points for an edge axis (hull_hull.glsl step 4). One thread per pair (while round shapes
+// live, per pair with a hull that round_order listed: push.args.x set); unmarked pairs
 // return at once. Dispatched indirectly over counters.pair_dispatch.
 #include "world.glsl"
 #include "quat.glsl"
@@ -16,6 +17,8 @@
 #include "hull_clip.glsl"
 #include "hull_hull.glsl"
 #include "pair.glsl"
+
+layout(push_constant) uniform Push { tb_gpu_push push; };
 
 uint hull_points(uint p)
 {
@@ -31,10 +34,17 @@ uint hull_points(uint p)
 void main()
 {
     if (counters.state.x != 0u) return;
-    uint p = pair_thread_index();
-    // A mesh triangle's pair is never contacts.comp's, so its manifold may hold a mark of a
-    // step abandoned before this pass: not ours.
-    bool marked = p < counters.state.z && manifolds[p].axis.z != 0u &&
-                  !pair_has_mesh(pairs[pair_half_base() + p]);
+    uint t = pair_thread_index(), p = t;
+    bool marked;
+    if (push.args.x != 0u) {
+        // While round shapes live, round_order listed the pairs with a hull (np_kind_run).
+        p = np_listed_pair(t, np_kind_run(TB_PAIR_KIND_HULL, TB_PAIR_KIND_HULL));
+        marked = p != NP_NONE && manifolds[p].axis.z != 0u;
+    } else {
+        // A mesh triangle's pair is never contacts.comp's, so its manifold may hold a mark
+        // of a step abandoned before this pass: not ours.
+        marked = p < counters.state.z && manifolds[p].axis.z != 0u &&
+                 !pair_has_mesh(pairs[pair_half_base() + p]);
+    }
     np_count_points(marked ? hull_points(p) : 0u);
 }

@@ -82,18 +82,47 @@ uint np_part_type(uint i, uint c)
     return shapes[floatBitsToUint(compound_of_shape(s).child[c].position.w)].info.x;
 }
 
-// The kind of pair p for round_points (TB_ROUND_KINDS), or TB_ROUND_KINDS when it has no
-// capsule, cylinder or cone (or is a compound pair whose parts are all apart). The round
-// types come last in the canonical order, so the round shape is the larger type.
-uint np_round_kind(uint p)
+// The kind of pair p (layout.h): a round kind for round_points when it has a capsule,
+// cylinder or cone; TB_PAIR_KIND_HULL or TB_PAIR_KIND_CONVEX for contacts.comp (a compound
+// pair whose parts are all apart too); TB_ROUND_KINDS for a pair of a body and a mesh
+// triangle without a round shape (mesh_points'). The round types come last in the
+// canonical order, so the round shape is the larger type, and a hull the larger of the
+// other convex shapes.
+uint np_pair_kind(uint p)
 {
     uvec4 pair = pairs[pair_half_base() + p];
-    if (pair.w == TB_PAIR_UNSPLIT) return TB_ROUND_KINDS;
+    if (pair.w == TB_PAIR_UNSPLIT) return TB_PAIR_KIND_CONVEX;
     uvec2 child = np_pair_children(pair);
     uint ta = np_part_type(pair.x, child.x), tb = np_part_type(pair.y, child.y);
     uint first = min(ta, tb), second = max(ta, tb);
-    if (!np_is_round(second)) return TB_ROUND_KINDS;
-    return first * 3u + second - TB_GPU_SHAPE_CAPSULE;
+    if (np_is_round(second)) return first * 3u + second - TB_GPU_SHAPE_CAPSULE;
+    if (second == TB_GPU_SHAPE_MESH || second == TB_GPU_SHAPE_HEIGHTFIELD) return TB_ROUND_KINDS;
+    return second == TB_GPU_SHAPE_HULL ? TB_PAIR_KIND_HULL : TB_PAIR_KIND_CONVEX;
+}
+
+// Pairs of kinds first..last (contiguous) as round_order listed them in colour_work's first
+// list: x where they start, y how many.
+uvec2 np_kind_run(uint first, uint last)
+{
+    uint count = 0u;
+    for (uint k = first; k <= last; k++) count += counters.round_kinds[k].x;
+    return uvec2(counters.round_kinds[first].z, count);
+}
+
+// Threads a pass over listed pairs spreads them across when they are few: packed into full
+// warps, a few thousand pairs would leave most of a GPU idle while each warp runs its
+// lanes' long routines; spread, more warps wait on memory at once.
+#define NP_SPREAD_THREADS 65536u
+
+// The listed pair (of the run np_kind_run gave) of thread t of a pass dispatched over
+// every pair, or NP_NONE: threads take every spread-th one, spread a power of two up to
+// 32, so that a run of few pairs still reaches about NP_SPREAD_THREADS threads.
+uint np_listed_pair(uint t, uvec2 run)
+{
+    uint room = counters.state.z / max(run.y, 1u);
+    uint spread = 1u << findMSB(clamp(min(NP_SPREAD_THREADS / max(run.y, 1u), room), 1u, 32u));
+    if ((t & (spread - 1u)) != 0u || t / spread >= run.y) return NP_NONE;
+    return colour_work[run.x + t / spread];
 }
 
 // Contact points for the stats: one atomic per subgroup.

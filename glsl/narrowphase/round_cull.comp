@@ -2,13 +2,14 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-// The first pass over the round pairs (pair.glsl's np_round_kind): those surely apart get
-// their empty manifold here (np_round_apart: bounding balls, the capsules' closed form,
-// GJK's first support); the kind of each pair left for round_points (TB_ROUND_KINDS for
-// none: not round, or apart) goes to colour_work's second list, free until the solver, for
-// round_count and round_order, which group those pairs by kind. Most of a pile's round
-// pairs are apart, and one GJK support tells; in round_points their threads would idle
-// beside those that build a manifold. The pairs are taken in their own order, not grouped:
+// The first pass of the narrowphase while round shapes live: every pair's kind (pair.glsl's
+// np_pair_kind). The round pairs surely apart get their empty manifold here
+// (np_round_apart: bounding balls, the capsules' closed form, GJK's first support). The
+// kind of each pair left for round_points or contacts.comp (TB_ROUND_KINDS for none: a
+// mesh triangle's pair, or apart) goes to colour_work's second list, free until the solver,
+// and is counted in counters.round_kinds[].x, for round_order, which lists those pairs
+// grouped by kind. Most of a pile's round pairs are apart, and one GJK support tells; in round_points
+// their threads would idle beside those that build a manifold. The pairs are taken in their own order, not grouped:
 // neighbouring pairs share bodies, and the loads of a warp then meet in the caches (grouped
 // by kind first, this pass took a third longer). A thread per pair, dispatched indirectly
 // over counters.wide_pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE.
@@ -27,6 +28,7 @@
 #include "gjk.glsl"
 #include "epa.glsl"
 #include "round.glsl"
+#include "round_kinds.glsl"
 
 // Whether pair p is apart (then its empty manifold is written).
 bool cull(uint p)
@@ -41,9 +43,16 @@ bool cull(uint p)
 
 void main()
 {
+    np_kind_clear();
     uint p = pair_thread_index();
-    if (step_aborted() || p >= counters.state.z) return;
-    uint kind = np_round_kind(p);
-    if (kind < TB_ROUND_KINDS && cull(p)) kind = TB_ROUND_KINDS;
-    colour_work[params.capacity.x + p] = kind;
+    bool live = !step_aborted() && p < counters.state.z;
+    uint kind = live ? np_pair_kind(p) : TB_ROUND_KINDS;
+    if (kind < TB_PAIR_KIND_HULL && cull(p)) kind = TB_ROUND_KINDS;
+    if (live) colour_work[params.capacity.x + p] = kind;
+    // The pairs left of each kind, counted for round_order.
+    np_kind_add(kind);
+    barrier();
+    uint k = gl_LocalInvocationID.x;
+    if (k < TB_ROUND_KINDS && np_kind_count[k] != 0u)
+        atomicAdd(counters.round_kinds[k].x, np_kind_count[k]);
 }

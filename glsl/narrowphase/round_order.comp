@@ -2,39 +2,48 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-// The round pairs round_cull left for round_points, grouped by kind into colour_work's first
-// list (free until the solver colours), so that
-// a warp of round_points runs pairs of one kind: its threads then take the same support
-// functions and features together instead of one kind after another (a pile whose kinds lay
-// in layers ran the kernel a quarter faster than a shuffled one). Each workgroup ranks its
-// pairs of a kind in shared memory and claims a run of the kind's range with one atomic;
-// the order within a kind follows the claims (round_points' results do not depend on it).
-// One thread per pair, dispatched indirectly over counters.pair_dispatch, after round_count
-// (round_cull left each pair's kind in colour_work's second list).
+// The pairs round_cull left for round_points and contacts.comp, grouped by kind into
+// colour_work's first list (free until the solver colours), so that a warp runs pairs of
+// one kind: its threads then take the same support functions and features together instead
+// of one kind after another (a pile whose kinds lay in layers ran round_points a quarter
+// faster than a shuffled one), and contacts.comp's threads are not spread one in sixteen
+// over the round pairs' warps. round_cull left each pair's kind in colour_work's second list and
+// counted every kind in counters.round_kinds[].x. Each workgroup ranks its pairs of a kind
+// (round_kinds.glsl) and claims a run of the kind's range with one atomic; the order within
+// a kind follows the claims (round_points' results do not depend on it). A thread per pair,
+// dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
+// TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"
+#include "round_kinds.glsl"
 
-shared uint kind_count[TB_ROUND_KINDS];
-shared uint kind_start[TB_ROUND_KINDS];
+// Where each kind's run of the workgroup starts: the kind's range starts after every
+// smaller kind's pairs.
+void claim_runs()
+{
+    uint k = gl_LocalInvocationID.x;
+    if (k < TB_ROUND_KINDS) np_kind_total[k] = counters.round_kinds[k].x;
+    barrier();
+    if (k < TB_ROUND_KINDS) {
+        uint before = 0u;
+        for (uint j = 0u; j < k; j++) before += np_kind_total[j];
+        uint mine = np_kind_count[k];
+        np_kind_start[k] = before + (mine != 0u ? atomicAdd(counters.round_kinds[k].y, mine) : 0u);
+        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u) {
+            counters.round_kinds[k].z = before;
+            if (k == TB_PAIR_KIND_HULL) counters.round_kinds[0].w = before;   // the round ones
+        }
+    }
+    barrier();
+}
 
 void main()
 {
-    uint t = gl_LocalInvocationID.x;
-    for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x) kind_count[k] = 0u;
-    barrier();
+    np_kind_clear();
     uint p = pair_thread_index();
     bool live = !step_aborted() && p < counters.state.z;
     uint kind = live ? colour_work[params.capacity.x + p] : TB_ROUND_KINDS;   // round_cull's
-    uint rank = kind < TB_ROUND_KINDS ? atomicAdd(kind_count[kind], 1u) : 0u;
+    uint rank = np_kind_add(kind);
     barrier();
-    for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x) {
-        // The kind's range starts after every smaller kind's pairs.
-        uint before = 0u;
-        for (uint j = 0u; j < k; j++) before += counters.round_kinds[j].x;
-        uint mine = kind_count[k];
-        kind_start[k] = before + (mine != 0u ? atomicAdd(counters.round_kinds[k].y, mine) : 0u);
-        if (k == TB_ROUND_KINDS - 1u && gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u)
-            counters.round_kinds[0].w = before + counters.round_kinds[k].x;
-    }
-    barrier();
-    if (kind < TB_ROUND_KINDS) colour_work[kind_start[kind] + rank] = p;
+    claim_runs();
+    if (kind < TB_ROUND_KINDS) colour_work[np_kind_start[kind] + rank] = p;
 }

@@ -188,6 +188,18 @@ static void record_stage(const tb_graph* graph, VkCommandBuffer cb, uint32_t i, 
                        plain ? SHADER_READS : STAGE_READS);
 }
 
+/* (a, b) at the offset become (b, a): the scratch takes (a, b, a), then gives back (b, a). The
+ * barrier before it held the step's shader reads of the buffer back. */
+static void record_swap(VkCommandBuffer cb, const tb_tail_swap* s)
+{
+    VkBufferCopy out[2] = { { s->offset, 0, 16 }, { s->offset, 16, 8 } };
+    vkCmdCopyBuffer(cb, s->buffer, s->scratch, 2, out);
+    memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    VkBufferCopy back = { 8, s->offset, 16 };
+    vkCmdCopyBuffer(cb, s->scratch, s->buffer, 1, &back);
+}
+
 static tb_result record(tb_graph* graph, VkBuffer params)
 {
     VkCommandBuffer cb = graph->cb;
@@ -214,6 +226,7 @@ static tb_result record(tb_graph* graph, VkBuffer params)
                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
         VkBufferCopy copy = { 0, 0, graph->tail.size };
         vkCmdCopyBuffer(cb, graph->tail.src, graph->tail.dst, 1, &copy);
+        if (graph->swap.buffer) record_swap(cb, &graph->swap);
         memory_barrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                        VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     }

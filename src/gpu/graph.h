@@ -67,6 +67,12 @@ typedef struct tb_stage {
 /// A copy recorded after the last stage of every step (counters to a host-visible buffer).
 typedef struct tb_tail_copy { VkBuffer src, dst; VkDeviceSize size; } tb_tail_copy;
 
+/// Two adjacent 8-byte values of `buffer` at `offset` swapped after every step, through
+/// `scratch` (TB_GRAPH_SWAP_SCRATCH_BYTES): the manifold arrays' addresses in the params,
+/// so that the steps of one submission alternate between them.
+typedef struct tb_tail_swap { VkBuffer buffer, scratch; VkDeviceSize offset; } tb_tail_swap;
+#define TB_GRAPH_SWAP_SCRATCH_BYTES 24
+
 typedef struct tb_graph {
     tb_gpu* gpu;
     tb_pipelines* pipelines;
@@ -76,6 +82,7 @@ typedef struct tb_graph {
     VkCommandBuffer cb;
     VkQueryPool queries;       ///< count + 1 timestamps; VK_NULL_HANDLE without timestamps
     tb_tail_copy tail;         ///< recorded after the last stage when src is set
+    tb_tail_swap swap;         ///< recorded after the tail copy when buffer is set
     int needs_record;
     uint64_t records;
 } tb_graph;

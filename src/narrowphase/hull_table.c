@@ -200,7 +200,6 @@ tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* re
     tb_result r = tb_pipeline_create(p, "narrowphase/contacts", TB_WORKGROUP_SIZE, &np->contacts);
     if (!r) r = tb_pipeline_create(p, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
                                    &np->hull_points);
-    if (!r) r = tb_pipeline_create(p, "narrowphase/keep", TB_WORKGROUP_SIZE, &np->keep);
     if (!r) r = hull_table_init(np, replaced);
     return r;
 }
@@ -212,11 +211,9 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
-    tb_pipeline_destroy(np->kit.pipelines, np->round_count);
     tb_pipeline_destroy(np->kit.pipelines, np->round_order);
     tb_pipeline_destroy(np->kit.pipelines, np->round_cull);
     tb_pipeline_destroy(np->kit.pipelines, np->round_points);
-    tb_pipeline_destroy(np->kit.pipelines, np->keep);
     hull_table_destroy(np);
     memset(np, 0, sizeof *np);
 }
@@ -235,16 +232,25 @@ static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeli
     return per_pair_at(np, list, pipeline, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET);
 }
 
-tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
-                                         VkBuffer counters)
+/* A thread per pair, or with `listed` per pair of its kinds that round_order listed. */
+static tb_result per_pair_or_listed(const tb_narrowphase* np, tb_pass_list* list,
+                                    VkPipeline pipeline, VkBuffer counters, int listed)
 {
-    return per_pair(np, list, np->contacts, counters);
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
+                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u, 0, 0);
+    return tb_pass_list_add(list, np->kit.diag, &pass);
+}
+
+tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
+                                         VkBuffer counters, int listed)
+{
+    return per_pair_or_listed(np, list, np->contacts, counters, listed);
 }
 
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
-                                            VkBuffer counters)
+                                            VkBuffer counters, int listed)
 {
-    return per_pair(np, list, np->hull_points, counters);
+    return per_pair_or_listed(np, list, np->hull_points, counters, listed);
 }
 
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
@@ -266,17 +272,16 @@ tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* lis
 {
     tb_pipelines* p = np->kit.pipelines;
     tb_result r = TB_OK;
-    if (!np->round_count)
-        r = tb_pipeline_create(p, "narrowphase/round_count", TB_WORKGROUP_SIZE, &np->round_count);
-    if (!r && !np->round_order)
-        r = tb_pipeline_create(p, "narrowphase/round_order", TB_WORKGROUP_SIZE, &np->round_order);
+    if (!np->round_order)
+        r = tb_pipeline_create(p, "narrowphase/round_order", TB_WIDE_WORKGROUP_SIZE,
+                               &np->round_order);
     if (!r && !np->round_cull)
         r = tb_pipeline_create(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
                                &np->round_cull);
     if (!r) r = per_pair_at(np, list, np->round_cull, counters,
                             TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
-    if (!r) r = per_pair(np, list, np->round_count, counters);
-    return r ? r : per_pair(np, list, np->round_order, counters);
+    return r ? r : per_pair_at(np, list, np->round_order, counters,
+                               TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
 
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
@@ -288,10 +293,4 @@ tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* l
                                TB_WIDE_WORKGROUP_SIZE, &np->round_points);
     return r ? r : per_pair_at(np, list, np->round_points, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
-}
-
-tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
-                                     VkBuffer counters)
-{
-    return per_pair(np, list, np->keep, counters);
 }

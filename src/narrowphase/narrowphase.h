@@ -3,13 +3,14 @@
  * Reads this step's pairs (the broadphase's), the bodies' poses and the shape table, the
  * packed hulls (the hull table below) and last step's manifolds. Writes one manifold per
  * pair (up to four points sharing a normal, with last step's impulses of the same features
- * for the warm start), and at the end of the step keeps this step's manifolds, with the
- * solver's final impulses, as last step's for the next. Its passes:
+ * for the warm start). The manifolds alternate between two arrays by the step's parity, so
+ * this step's, with the solver's final impulses, are last step's for the next where they
+ * lie. Its passes:
  *   narrowphase/contacts     one thread per pair: the manifold; hull pairs that touch get
  *                            only their separating axis
  *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
  *                            while the world has hull shapes
- *   narrowphase/round_cull, round_count, round_order, round_points
+ *   narrowphase/round_cull, round_order, round_points
  *                            the points of every pair with a capsule, cylinder or cone
  *                            (against any convex shape, a plane or a mesh triangle):
  *                            those surely apart given their empty manifold, the others
@@ -19,7 +20,6 @@
  *                            broadphase split the body pair by triangle), then
  *   narrowphase/mesh_reduce  at most four of them per body pair; both recorded only while
  *                            the world has mesh shapes
- *   narrowphase/keep         this step's manifolds become last step's
  * Per-pair passes are dispatched with counters.pair_dispatch.
  *
  * The hull table packs the geometry of every live hull and box shape into the two buffers
@@ -49,11 +49,11 @@ typedef struct tb_hull_table {
 
 typedef struct tb_narrowphase {
     tb_gpu_kit kit;
-    VkPipeline contacts, hull_points, keep;
+    VkPipeline contacts, hull_points;
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
     /// made when the world's first round shape comes: the round pairs apart sorted out, the
     /// others counted and grouped by kind, then their points
-    VkPipeline round_count, round_order, round_cull, round_points;
+    VkPipeline round_order, round_cull, round_points;
     tb_hull_table hulls;
 } tb_narrowphase;
 
@@ -70,19 +70,21 @@ typedef struct tb_hull_shapes {
 tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced);
 void tb_narrowphase_destroy(tb_narrowphase* np);
 
-/// narrowphase/contacts; `counters` is the buffer bound at TB_BIND_COUNTERS.
+/// narrowphase/contacts; `counters` is the buffer bound at TB_BIND_COUNTERS. With `listed`
+/// (while round shapes live, after round_cull) over the pairs round_order listed for it,
+/// otherwise over every pair.
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
-                                         VkBuffer counters);
+                                         VkBuffer counters, int listed);
 /// narrowphase/hull_points, the points of the touching hull pairs (recorded only while the
-/// world has hull shapes).
+/// world has hull shapes); `listed` as for contacts.
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
-                                            VkBuffer counters);
+                                            VkBuffer counters, int listed);
 /// narrowphase/mesh_points and mesh_reduce, the points of the mesh pairs (recorded only
 /// while the world has mesh shapes; their pipelines are made the first time).
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters);
-/// narrowphase/round_cull, round_count and round_order: the pairs with a capsule, cylinder or
-/// cone that are surely apart given their empty manifold, the others grouped by kind for
+/// narrowphase/round_cull and round_order: the pairs with a capsule, cylinder or cone that
+/// are surely apart given their empty manifold, the others counted and grouped by kind for
 /// round_points (recorded only while the world has such shapes, before round_points; their
 /// pipelines are made the first time).
 tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* list,
@@ -90,9 +92,6 @@ tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* lis
 /// narrowphase/round_points, the points of the round pairs round_cull listed.
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
                                              VkBuffer counters);
-/// narrowphase/keep.
-tb_result tb_narrowphase_record_keep(const tb_narrowphase* np, tb_pass_list* list,
-                                     VkBuffer counters);
 
 /// Pack the hulls again if shapes changed (may replace the buffers: *replaced set).
 /// Rewrites the locators of every hull shape in shapes->gpu_shapes.

@@ -36,12 +36,19 @@ static uint32_t last_pairs(const tb_world* w)
     return pairs <= w->sim.pair_capacity ? pairs : 0;
 }
 
+/* The array that holds the last completed step's manifolds. */
+static const tb_buffer* last_manifolds(const tb_world* w)
+{
+    return tb_sim_manifolds_of_step(&w->sim, w->gpu_steps + 1u);
+}
+
 void tb_world_contact_buffer(const tb_world* w, VkBuffer* buffer, uint32_t* count,
                              VkDeviceSize* size)
 {
-    *buffer = w->sim.pair[TB_SIM_MANIFOLDS].buffer;
+    const tb_buffer* m = last_manifolds(w);
+    *buffer = m->buffer;
     *count = last_pairs(w);
-    *size = w->sim.pair[TB_SIM_MANIFOLDS].size;
+    *size = m->size;
 }
 
 tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count)
@@ -54,7 +61,7 @@ tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uin
     tb_transfer* t = &w->transfer;
     tb_result r = tb_transfer_begin(t, bytes + cbytes + 64);
     if (r) return r;
-    const void* m = tb_transfer_download(t, w->sim.pair[TB_SIM_MANIFOLDS].buffer, 0, bytes);
+    const void* m = tb_transfer_download(t, last_manifolds(w)->buffer, 0, bytes);
     const void* c = tb_transfer_download(t, w->sim.pair[TB_SIM_CONSTRAINTS].buffer, 0, cbytes);
     r = tb_transfer_end(t);
     if (!r) r = tb_gpu_submit_wait(&w->gpu, &t->cb, 1);

@@ -37,8 +37,11 @@ static void write_params(tb_world* w, float dt)
     p->block_more = (tb_gpu_vec4){ b->stabilisation, b->anchored_friction, (float)w->substeps,
                                    b->stiffness_carry };
     const tb_buffer* pair = w->sim.pair;
-    p->contact_arrays[0] = tb_gpu_addresses(pair[TB_SIM_MANIFOLDS].address,
-                                            pair[TB_SIM_PREV_MANIFOLDS].address);
+    /* The manifold array of the next step's parity, then the other (last step's); after
+     * each step of the submission the GPU swaps the two (tb_tail_swap). */
+    const tb_buffer* next = tb_sim_manifolds_of_step(&w->sim, w->gpu_steps);
+    const tb_buffer* last = tb_sim_manifolds_of_step(&w->sim, w->gpu_steps + 1);
+    p->contact_arrays[0] = tb_gpu_addresses(next->address, last->address);
     p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address,
                                             pair[TB_SIM_BLOCK_ENTRIES].address);
 }

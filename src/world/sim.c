@@ -22,9 +22,9 @@ static const uint32_t body_binding[TB_SIM_BODY_BUFFER_COUNT] = {
 /* The contact arrays and the block solver's lists are reached by address
  * (tb_gpu_params.contact_arrays), not bound. */
 static const uint32_t pair_binding[TB_SIM_PAIR_BUFFER_COUNT] = {
-    [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS] = UINT32_MAX,
+    [TB_SIM_PAIRS] = TB_BIND_PAIRS, [TB_SIM_MANIFOLDS_EVEN] = UINT32_MAX,
     [TB_SIM_CONSTRAINTS] = UINT32_MAX, [TB_SIM_COLOUR_LIST] = TB_BIND_COLOUR_LIST,
-    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_PREV_MANIFOLDS] = UINT32_MAX,
+    [TB_SIM_COLOUR_WORK] = TB_BIND_COLOUR_WORK, [TB_SIM_MANIFOLDS_ODD] = UINT32_MAX,
     [TB_SIM_TAIL_SCRATCH] = UINT32_MAX, [TB_SIM_EVENT_MARKS] = UINT32_MAX,
     [TB_SIM_BLOCK_ENTRIES] = UINT32_MAX, [TB_SIM_SPLIT] = UINT32_MAX,
 };
@@ -50,15 +50,15 @@ static VkDeviceSize body_bytes(const tb_sim* sim, tb_sim_body_buffer b, uint32_t
     }
 }
 
-/* Pairs hold two halves (this step's and the previous one's); manifolds keep last step's in
- * an array of their own. */
+/* Pairs hold two halves (this step's and the previous one's); the manifolds two arrays, of the
+ * even and the odd steps, so last step's stay where they were written. */
 static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t capacity)
 {
     switch (b) {
     case TB_SIM_TAIL_SCRATCH: return tb_prims_compact_scratch(sim->prims, capacity);
     case TB_SIM_PAIRS: return 2 * (VkDeviceSize)capacity * 16;
-    case TB_SIM_MANIFOLDS:
-    case TB_SIM_PREV_MANIFOLDS: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
+    case TB_SIM_MANIFOLDS_EVEN:
+    case TB_SIM_MANIFOLDS_ODD: return (VkDeviceSize)capacity * sizeof(tb_gpu_manifold);
     case TB_SIM_CONSTRAINTS: return (VkDeviceSize)capacity * sizeof(tb_gpu_constraint);
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
     case TB_SIM_SPLIT: return tb_pair_split_bytes(sim->prims, capacity);
@@ -181,12 +181,12 @@ static tb_result resize_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
     if (r) return r;
     for (int b = 0; b < TB_SIM_PAIR_BUFFER_COUNT && !r; b++) {
         /* Both halves of the pairs move to their new places (half h starts at h * capacity);
-         * last step's manifolds keep their indices. */
+         * both manifold arrays (one is last step's) keep their indices. */
         VkDeviceSize old = pair_bytes(sim, b, sim->pair_capacity);
         VkDeviceSize half_old = old / 2, half_new = pair_bytes(sim, b, pairs) / 2;
         VkBufferCopy halves[2] = { { 0, 0, half_old }, { half_old, half_new, half_old } };
         VkBufferCopy whole = { 0, 0, old };
-        uint32_t n = !old ? 0 : b == TB_SIM_PAIRS ? 2 : b == TB_SIM_PREV_MANIFOLDS ? 1 : 0;
+        uint32_t n = !old ? 0 : b == TB_SIM_PAIRS ? 2 : tb_sim_is_manifolds(b) ? 1 : 0;
         r = replace(sim, t, &sim->pair[b], pair_bytes(sim, b, pairs), b == TB_SIM_PAIRS ? halves : &whole,
                     n, 0, &fresh[b]);
     }

@@ -22,8 +22,8 @@ typedef enum tb_sim_body_buffer {
 } tb_sim_body_buffer;
 
 typedef enum tb_sim_pair_buffer {
-    TB_SIM_PAIRS, TB_SIM_MANIFOLDS, TB_SIM_CONSTRAINTS, TB_SIM_COLOUR_LIST, TB_SIM_COLOUR_WORK,
-    TB_SIM_PREV_MANIFOLDS, TB_SIM_TAIL_SCRATCH, TB_SIM_EVENT_MARKS, TB_SIM_BLOCK_ENTRIES,
+    TB_SIM_PAIRS, TB_SIM_MANIFOLDS_EVEN, TB_SIM_CONSTRAINTS, TB_SIM_COLOUR_LIST, TB_SIM_COLOUR_WORK,
+    TB_SIM_MANIFOLDS_ODD, TB_SIM_TAIL_SCRATCH, TB_SIM_EVENT_MARKS, TB_SIM_BLOCK_ENTRIES,
     TB_SIM_SPLIT, TB_SIM_PAIR_BUFFER_COUNT
 } tb_sim_pair_buffer;
 
@@ -65,5 +65,18 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs);
 tb_result tb_sim_set_block_lists(tb_sim* sim, tb_transfer* t, int on);
 
 const tb_gpu_counters* tb_sim_counters(const tb_sim* sim);
+
+/// Whether pair buffer b is one of the two manifold arrays.
+static inline int tb_sim_is_manifolds(tb_sim_pair_buffer b)
+{
+    return b == TB_SIM_MANIFOLDS_EVEN || b == TB_SIM_MANIFOLDS_ODD;
+}
+
+/// The manifold array the step after `steps` completed steps writes (the step's parity, as
+/// the GPU's current_half()); the other holds the manifolds of the step before.
+static inline const tb_buffer* tb_sim_manifolds_of_step(const tb_sim* sim, uint64_t steps)
+{
+    return &sim->pair[steps & 1u ? TB_SIM_MANIFOLDS_ODD : TB_SIM_MANIFOLDS_EVEN];
+}
 
 #endif

@@ -95,26 +95,32 @@ static void broadphase_stage(builder* b)
     end_stage(b, "midphase/split");
 }
 
-/* Manifolds of every pair (narrowphase/contacts), then the points of the touching hull pairs
+/* While the world has capsules, cylinders or cones, first every pair's kind, the round pairs
+ * surely apart sorted out and the others listed grouped by kind (narrowphase/round_cull).
+ * Then the manifolds of the pairs of spheres, boxes, planes and hulls (narrowphase/contacts:
+ * those listed, or every pair), then the points of the touching hull pairs
  * (narrowphase/hull_points, see contacts.comp), a stage of its own so the stats tell the two
  * apart, recorded only while the world has hull shapes (box pairs never defer theirs); then
- * the pairs with a capsule, cylinder or cone, while it has such shapes: those apart sorted
- * out and the others grouped by kind (narrowphase/round_cull), then their points
- * (narrowphase/round_points); then the mesh pairs' (narrowphase/mesh_points), while it has
- * mesh shapes. */
+ * the round pairs' points (narrowphase/round_points); then the mesh pairs'
+ * (narrowphase/mesh_points), while it has mesh shapes. */
 static void narrowphase_stage(builder* b)
 {
     tb_world* w = b->w;
-    if (!b->r) b->r = tb_narrowphase_record_contacts(&w->narrowphase, &b->list, b->counters);
-    end_stage(b, "narrowphase/contacts");
-    if (w->hull_shapes) {
-        if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list, b->counters);
-        end_stage(b, "narrowphase/hull_points");
-    }
-    if (w->round_shapes) {
+    int listed = w->round_shapes != 0;
+    if (listed) {
         if (!b->r) b->r = tb_narrowphase_record_round_cull(&w->narrowphase, &b->list,
                                                            b->counters);
         end_stage(b, "narrowphase/round_cull");
+    }
+    if (!b->r) b->r = tb_narrowphase_record_contacts(&w->narrowphase, &b->list, b->counters,
+                                                     listed);
+    end_stage(b, "narrowphase/contacts");
+    if (w->hull_shapes) {
+        if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list,
+                                                            b->counters, listed);
+        end_stage(b, "narrowphase/hull_points");
+    }
+    if (listed) {
         if (!b->r) b->r = tb_narrowphase_record_round_points(&w->narrowphase, &b->list,
                                                              b->counters);
         end_stage(b, "narrowphase/round_points");
@@ -123,12 +129,6 @@ static void narrowphase_stage(builder* b)
         if (!b->r) b->r = tb_narrowphase_record_mesh_points(&w->narrowphase, &b->list, b->counters);
         end_stage(b, "narrowphase/mesh_points");
     }
-}
-
-static void keep_stage(builder* b)
-{
-    if (!b->r) b->r = tb_narrowphase_record_keep(&b->w->narrowphase, &b->list, b->counters);
-    end_stage(b, "narrowphase/keep");
 }
 
 /* The block solver's contact lists and colouring of bodies, in place of the colouring of
@@ -224,7 +224,7 @@ static void plugin_stages(builder* b, tb_plugin_point point)
 }
 
 /* The contact events plugins' callbacks get, once the solver's impulses are final and before
- * narrowphase/keep makes this step's manifolds last step's (events.c). */
+ * step/end makes this step's manifolds last step's (events.c). */
 static void contact_event_stage(builder* b)
 {
     if (!b->r) b->r = tb_events_record(b->w, &b->list);
@@ -246,7 +246,6 @@ tb_result tb_step_build(tb_world* w)
     apply_forces_stage(&b);
     solve_stage(&b);
     contact_event_stage(&b);
-    keep_stage(&b);
     integrate_stage(&b);
     plugin_stages(&b, TB_PLUGIN_POST_SOLVE);
     plugin_stages(&b, TB_PLUGIN_POST_STEP);
@@ -254,6 +253,9 @@ tb_result tb_step_build(tb_world* w)
     tb_pass_list_free(&b.list);
     w->graph.tail = (tb_tail_copy){ w->sim.counters.buffer, w->sim.readback.buffer,
                                     sizeof(tb_gpu_counters) };
+    /* This step's manifolds are the next one's last step's where they lie. */
+    w->graph.swap = (tb_tail_swap){ w->params_buffer.buffer, w->params_swap.buffer,
+                                    offsetof(tb_gpu_params, contact_arrays) };
     w->step_built = !b.r;
     return b.r;
 }

@@ -38,7 +38,11 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_graph_init(&w->graph, &w->gpu, &w->pipelines);
     if (!r) r = tb_buffer_create(&w->memory, sizeof(tb_gpu_params),
                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, 0, &w->params_buffer);
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 0, &w->params_buffer);
+    if (!r) r = tb_buffer_create(&w->memory, TB_GRAPH_SWAP_SCRATCH_BYTES,
+                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                 0, &w->params_swap);
     if (r) return r;
     tb_pipelines_bind(&w->pipelines, TB_BIND_PARAMS, w->params_buffer.buffer);
     int replaced = 0;
@@ -126,6 +130,7 @@ void tb_world_free(tb_world* w)
         tb_narrowphase_destroy(&w->narrowphase);
         tb_pipeline_destroy(&w->pipelines, w->distance_query);
         tb_buffer_destroy(&w->memory, &w->params_buffer);
+        tb_buffer_destroy(&w->memory, &w->params_swap);
         tb_transfer_destroy(&w->transfer);
         tb_pipelines_destroy(&w->pipelines);
         tb_memory_destroy(&w->memory);

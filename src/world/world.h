@@ -106,6 +106,7 @@ struct tb_world {
     uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
     uint64_t steps_redone;       ///< steps run again after a buffer grew
     tb_buffer params_buffer;
+    tb_buffer params_swap;       ///< scratch through which a step swaps the manifold arrays
     tb_gpu_params params;
 
     tb_vec3 gravity;
