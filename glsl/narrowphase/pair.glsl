@@ -37,7 +37,9 @@ uvec2 np_pair_children(uvec4 pair)
     return uvec2(child_a, mesh ? child_a : pair.w >> 16);
 }
 
-np_pair np_pair_load(uint p)
+// Pair p's bodies, order and margin; its target has no last step's manifold (np_pair_load
+// finds that).
+np_pair np_pair_bodies(uint p)
 {
     np_pair q;
     uvec4 pair = pairs[pair_half_base() + p];
@@ -49,12 +51,20 @@ np_pair np_pair_load(uint p)
     q.body_a = np_load_part(q.a, child.x);
     q.body_b = np_load_part(q.b, child.y);
     q.swapped = q.body_a.type > q.body_b.type || (q.body_a.type == q.body_b.type && q.a > q.b);
-    q.t = np_target_make(p, q.a, q.b, q.sub, current_half() ^ 1u);
+    q.t = np_target(p, NP_NONE, 0u, uvec4(0u));
     // Selected operands (not one call per order): both orders run the very same
     // instructions, so their points agree to the bit.
     q.first = q.swapped ? q.body_b : q.body_a;
     q.second = q.swapped ? q.body_a : q.body_b;
     q.margin = pair_margin(q.a, q.b);
+    return q;
+}
+
+// Pair p with last step's manifold of the same pair (found in last step's pairs).
+np_pair np_pair_load(uint p)
+{
+    np_pair q = np_pair_bodies(p);
+    q.t = np_target_make(p, q.a, q.b, q.sub, current_half() ^ 1u);
     return q;
 }
 

@@ -33,7 +33,10 @@
 // Whether pair p is apart (then its empty manifold is written).
 bool cull(uint p)
 {
-    np_pair q = np_pair_load(p);
+    // Last step's manifold is not looked for: a manifold without points takes nothing from
+    // it (its stiffness carry-over, axis.w, is read for points only and zeroed by the block
+    // solver's start, block/start.comp), and the search is a loop over last step's pairs.
+    np_pair q = np_pair_bodies(p);
     if (!np_round_apart(q.first, q.second, q.margin)) return false;
     // As round_points with no points.
     np_pair_start(q);
