@@ -3,7 +3,8 @@
  * without drift, with the contact points a stable rest needs (a cylinder on its cap four, on
  * its side two); a cylinder rolling down an incline at (2/3) g sin(angle); pairs among
  * themselves and with spheres; a sphere or capsule against a capsule in closed form;
- * compounds with round children. */
+ * compounds with round children; the other shapes' contacts the same with round shapes in
+ * the world as without. */
 #include "harness.h"
 
 #include <math.h>
@@ -11,6 +12,7 @@
 #define M_PI 3.14159265358979323846
 #endif
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define DT (1.0f / 60.0f)
@@ -322,6 +324,88 @@ static void test_compound_with_round_children(void** state)
     th_world_destroy(w);
 }
 
+/* ---- the other pairs while round shapes live ------------------------------------------ */
+
+/* A heap of 27 boxes, hulls (cuboctahedra) and spheres on a plane, overlapping a little,
+ * turned each its own way. */
+static void heap(tb_world* w)
+{
+    make_ground(w, ON_PLANE);
+    tb_vec3 p[12];
+    for (int i = 0; i < 12; i++) {
+        float a = i & 1 ? 0.45f : -0.45f, b = i & 2 ? 0.45f : -0.45f;
+        int axis = i >> 2;   /* which coordinate is zero */
+        p[i] = axis == 0 ? th_v3(0, a, b) : axis == 1 ? th_v3(a, 0, b) : th_v3(a, b, 0);
+    }
+    tb_shape_def def = tb_default_shape_def();
+    tb_shape_id shapes[3];
+    shapes[0] = th_box(w, th_v3(0.45f, 0.4f, 0.5f));
+    th_assert_ok(tb_shape_create_hull(w, &def, p, 12, &shapes[1]));
+    shapes[2] = th_sphere(w, 0.47f);
+    for (int i = 0; i < 27; i++) {
+        tb_vec3 at = th_v3(0.85f * (float)(i % 3), 0.42f + 0.8f * (float)(i / 9),
+                           0.85f * (float)((i / 3) % 3));
+        tb_body_def b = th_dynamic_def(shapes[(i + i / 3) % 3], at);
+        b.rotation = th_quat_axis_angle(th_v3(1, (float)(i % 5), (float)(i % 7) - 3), 0.1f * (float)i);
+        th_body(w, &b);
+    }
+}
+
+static int by_pair_and_feature(const void* x, const void* y)
+{
+    const tb_contact *a = x, *b = y;
+    if (a->a.index1 != b->a.index1) return a->a.index1 < b->a.index1 ? -1 : 1;
+    if (a->b.index1 != b->b.index1) return a->b.index1 < b->b.index1 ? -1 : 1;
+    return a->feature < b->feature ? -1 : a->feature > b->feature;
+}
+
+/* The first step's contacts, sorted, leaving out those of body `skip`. */
+static uint32_t first_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t skip)
+{
+    th_assert_ok(tb_world_step(w, DT));
+    uint32_t count = 0, kept = 0;
+    th_assert_ok(tb_world_read_contacts(w, out, capacity, &count));
+    assert_true(count <= capacity);
+    for (uint32_t i = 0; i < count; i++)
+        if (out[i].a.index1 != skip && out[i].b.index1 != skip) out[kept++] = out[i];
+    qsort(out, kept, sizeof *out, by_pair_and_feature);
+    return kept;
+}
+
+/* With a capsule in the world, the pairs of boxes, hulls, spheres and the plane are listed
+ * by narrowphase/round_cull and taken from that list by contacts and hull_points (spread
+ * over several threads each, as they are few); without, a thread per pair. Either way the
+ * same routines on the same poses: the same points, to the bit. */
+static void test_other_pairs_same_with_round_shapes(void** state)
+{
+    (void)state;
+    enum { CAP = 512 };
+    static tb_contact alone[CAP], beside[CAP];
+    tb_world* w = th_world_create(NULL);
+    heap(w);
+    uint32_t n = first_contacts(w, alone, CAP, UINT32_MAX);
+    th_world_destroy(w);
+
+    w = th_world_create(NULL);
+    heap(w);
+    tb_body_def def = th_dynamic_def(make_round(w, TB_SHAPE_CAPSULE, 0.3f, 0.5f), th_v3(40, 0.8f, 0));
+    tb_body_id capsule = th_body(w, &def);
+    uint32_t m = first_contacts(w, beside, CAP, capsule.index1);
+    th_world_destroy(w);
+
+    printf("heap: %u contact points\n", n);
+    assert_true(n > 40);
+    assert_int_equal(m, n);
+    for (uint32_t i = 0; i < n; i++) {
+        assert_int_equal(alone[i].a.index1, beside[i].a.index1);
+        assert_int_equal(alone[i].b.index1, beside[i].b.index1);
+        assert_int_equal(alone[i].feature, beside[i].feature);
+        assert_memory_equal(&alone[i].point, &beside[i].point, sizeof alone[i].point);
+        assert_memory_equal(&alone[i].normal, &beside[i].normal, sizeof alone[i].normal);
+        assert_memory_equal(&alone[i].separation, &beside[i].separation, sizeof(float));
+    }
+}
+
 /* ---- sizes, mass and refusals --------------------------------------------------------- */
 
 /* Volume and principal moments per unit mass of a solid of revolution about y, integrated
@@ -523,6 +607,7 @@ int main(void)
         cmocka_unit_test(test_round_towers),
         cmocka_unit_test(test_compound_with_round_children),
         cmocka_unit_test(test_capsule_pairs_closed_form),
+        cmocka_unit_test(test_other_pairs_same_with_round_shapes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
