@@ -346,7 +346,8 @@ static void heap(tb_world* w)
         tb_vec3 at = th_v3(0.85f * (float)(i % 3), 0.42f + 0.8f * (float)(i / 9),
                            0.85f * (float)((i / 3) % 3));
         tb_body_def b = th_dynamic_def(shapes[(i + i / 3) % 3], at);
-        b.rotation = th_quat_axis_angle(th_v3(1, (float)(i % 5), (float)(i % 7) - 3), 0.1f * (float)i);
+        tb_vec3 axis = th_v3(1, (float)(i % 5), (float)(i % 7) - 3);
+        b.rotation = th_quat_axis_angle(axis, 0.1f * (float)i);
         th_body(w, &b);
     }
 }
@@ -388,7 +389,8 @@ static void test_other_pairs_same_with_round_shapes(void** state)
 
     w = th_world_create(NULL);
     heap(w);
-    tb_body_def def = th_dynamic_def(make_round(w, TB_SHAPE_CAPSULE, 0.3f, 0.5f), th_v3(40, 0.8f, 0));
+    tb_shape_id s = make_round(w, TB_SHAPE_CAPSULE, 0.3f, 0.5f);
+    tb_body_def def = th_dynamic_def(s, th_v3(40, 0.8f, 0));
     tb_body_id capsule = th_body(w, &def);
     uint32_t m = first_contacts(w, beside, CAP, capsule.index1);
     th_world_destroy(w);

@@ -8,11 +8,12 @@
 // kind of each pair left for round_points or contacts.comp (TB_ROUND_KINDS for none: a
 // mesh triangle's pair, or apart) goes to colour_work's second list, free until the solver,
 // and is counted in counters.round_kinds[].x, for round_order, which lists those pairs
-// grouped by kind. Most of a pile's round pairs are apart, and one GJK support tells; in round_points
-// their threads would idle beside those that build a manifold. The pairs are taken in their own order, not grouped:
-// neighbouring pairs share bodies, and the loads of a warp then meet in the caches (grouped
-// by kind first, this pass took a third longer). A thread per pair, dispatched indirectly
-// over counters.wide_pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE.
+// grouped by kind. Most of a pile's round pairs are apart, and one GJK support tells; in
+// round_points their threads would idle beside those that build a manifold. The pairs are
+// taken in their own order, not grouped: neighbouring pairs share bodies, and the loads of
+// a warp then meet in the caches (grouped by kind first, this pass took a third longer). A
+// thread per pair, dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
+// TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"
 #include "quat.glsl"
 #include "manifold.glsl"

@@ -7,10 +7,11 @@
 // one kind: its threads then take the same support functions and features together instead
 // of one kind after another (a pile whose kinds lay in layers ran round_points a quarter
 // faster than a shuffled one), and contacts.comp's threads are not spread one in sixteen
-// over the round pairs' warps. round_cull left each pair's kind in colour_work's second list and
-// counted every kind in counters.round_kinds[].x. Each workgroup ranks its pairs of a kind
-// (round_kinds.glsl) and claims a run of the kind's range with one atomic; the order within
-// a kind follows the claims (round_points' results do not depend on it). A thread per pair,
+// over the round pairs' warps. round_cull left each pair's kind in colour_work's second
+// list and counted every kind in counters.round_kinds[].x. Each workgroup ranks its pairs
+// of a kind (round_kinds.glsl) and claims a run of the kind's range with one atomic; the
+// order within a kind follows the claims (round_points' and contacts' results do not
+// depend on it). A thread per pair,
 // dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
 // TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"

@@ -8,6 +8,7 @@
 #define DEFAULT_MAX_SHAPES (1u << 20)
 #define INITIAL_SHAPE_CAPACITY 16u
 #define INITIAL_COLOUR_ROUNDS 16u
+#define TRANSFER_BOTH (VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT)
 
 static uint16_t next_world_serial(void)
 {
@@ -38,11 +39,9 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = tb_graph_init(&w->graph, &w->gpu, &w->pipelines);
     if (!r) r = tb_buffer_create(&w->memory, sizeof(tb_gpu_params),
                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 0, &w->params_buffer);
-    if (!r) r = tb_buffer_create(&w->memory, TB_GRAPH_SWAP_SCRATCH_BYTES,
-                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 0, &w->params_swap);
+                                 TRANSFER_BOTH, 0, &w->params_buffer);
+    if (!r) r = tb_buffer_create(&w->memory, TB_GRAPH_SWAP_SCRATCH_BYTES, TRANSFER_BOTH, 0,
+                                 &w->params_swap);
     if (r) return r;
     tb_pipelines_bind(&w->pipelines, TB_BIND_PARAMS, w->params_buffer.buffer);
     int replaced = 0;
