@@ -245,8 +245,9 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 wide_pair_dispatch; /* xyz: as pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE */
     TB_UVEC4 round_kinds[TB_ROUND_KINDS]; /* the pairs of each kind (TB_ROUND_KINDS) listed by
                                  narrowphase/round_order: x how many, y placed so far, z
-                                 where they start; [0].w the round ones (those
-                                 narrowphase/round_cull leaves to round_points) */
+                                 where they start (the round kinds first, so
+                                 [TB_PAIR_KIND_HULL].z is how many round pairs
+                                 narrowphase/round_cull leaves to round_points), w unused */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)

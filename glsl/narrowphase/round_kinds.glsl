@@ -6,8 +6,6 @@
 #extension GL_KHR_shader_subgroup_shuffle : require
 
 shared uint np_kind_count[TB_ROUND_KINDS];   // the workgroup's pairs of each kind
-shared uint np_kind_total[TB_ROUND_KINDS];   // every workgroup's (round_order)
-shared uint np_kind_start[TB_ROUND_KINDS];   // where the workgroup's run of a kind starts
 
 // Of this subgroup's lanes of this lane's kind: x this lane's rank, y the lowest lane, z how
 // many they are.

@@ -17,22 +17,22 @@
 #include "world.glsl"
 #include "round_kinds.glsl"
 
+shared uint kind_total[TB_ROUND_KINDS];   // every workgroup's pairs of each kind
+shared uint kind_start[TB_ROUND_KINDS];   // where this workgroup's run of a kind starts
+
 // Where each kind's run of the workgroup starts: the kind's range starts after every
 // smaller kind's pairs.
 void claim_runs()
 {
     uint k = gl_LocalInvocationID.x;
-    if (k < TB_ROUND_KINDS) np_kind_total[k] = counters.round_kinds[k].x;
+    if (k < TB_ROUND_KINDS) kind_total[k] = counters.round_kinds[k].x;
     barrier();
     if (k < TB_ROUND_KINDS) {
         uint before = 0u;
-        for (uint j = 0u; j < k; j++) before += np_kind_total[j];
+        for (uint j = 0u; j < k; j++) before += kind_total[j];
         uint mine = np_kind_count[k];
-        np_kind_start[k] = before + (mine != 0u ? atomicAdd(counters.round_kinds[k].y, mine) : 0u);
-        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u) {
-            counters.round_kinds[k].z = before;
-            if (k == TB_PAIR_KIND_HULL) counters.round_kinds[0].w = before;   // the round ones
-        }
+        kind_start[k] = before + (mine != 0u ? atomicAdd(counters.round_kinds[k].y, mine) : 0u);
+        if (gl_WorkGroupID.x == 0u && gl_WorkGroupID.y == 0u) counters.round_kinds[k].z = before;
     }
     barrier();
 }
@@ -46,5 +46,5 @@ void main()
     uint rank = np_kind_add(kind);
     barrier();
     claim_runs();
-    if (kind < TB_ROUND_KINDS) colour_work[np_kind_start[kind] + rank] = p;
+    if (kind < TB_ROUND_KINDS) colour_work[kind_start[kind] + rank] = p;
 }

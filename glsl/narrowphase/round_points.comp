@@ -47,6 +47,7 @@ void main()
     if (counters.state.x != 0u) return;
     // The round pairs round_cull left, grouped by kind (round_order).
     uint t = pair_thread_index();
-    bool mine = t < counters.round_kinds[0].w;
+    // The round kinds come first: the first kind after them starts where they end.
+    bool mine = t < counters.round_kinds[TB_PAIR_KIND_HULL].z;
     np_count_points(mine ? round_points(colour_work[t]) : 0u);
 }

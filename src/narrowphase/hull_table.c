@@ -218,12 +218,20 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
     memset(np, 0, sizeof *np);
 }
 
+/* A pass dispatched over counters at dispatch_offset, with push constant args.x `arg`. */
+static tb_result per_pair_with(const tb_narrowphase* np, tb_pass_list* list,
+                               VkPipeline pipeline, VkBuffer counters,
+                               VkDeviceSize dispatch_offset, uint32_t arg)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters, dispatch_offset,
+                                     arg, 0, 0);
+    return tb_pass_list_add(list, np->kit.diag, &pass);
+}
+
 static tb_result per_pair_at(const tb_narrowphase* np, tb_pass_list* list, VkPipeline pipeline,
                              VkBuffer counters, VkDeviceSize dispatch_offset)
 {
-    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters, dispatch_offset,
-                                     0, 0, 0);
-    return tb_pass_list_add(list, np->kit.diag, &pass);
+    return per_pair_with(np, list, pipeline, counters, dispatch_offset, 0);
 }
 
 static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeline pipeline,
@@ -232,25 +240,19 @@ static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeli
     return per_pair_at(np, list, pipeline, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET);
 }
 
-/* A thread per pair, or with `listed` per pair of its kinds that round_order listed. */
-static tb_result per_pair_or_listed(const tb_narrowphase* np, tb_pass_list* list,
-                                    VkPipeline pipeline, VkBuffer counters, int listed)
-{
-    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_INDIRECT, counters,
-                                     TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u, 0, 0);
-    return tb_pass_list_add(list, np->kit.diag, &pass);
-}
-
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters, int listed)
 {
-    return per_pair_or_listed(np, list, np->contacts, counters, listed);
+    /* args.x 1: over the pairs of its kinds that round_order listed. */
+    return per_pair_with(np, list, np->contacts, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
+                         listed ? 1u : 0u);
 }
 
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters, int listed)
 {
-    return per_pair_or_listed(np, list, np->hull_points, counters, listed);
+    return per_pair_with(np, list, np->hull_points, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
+                         listed ? 1u : 0u);
 }
 
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,
