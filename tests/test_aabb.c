@@ -149,6 +149,72 @@ static void test_aabb_follows_pose(void** state)
     th_world_destroy(w);
 }
 
+/* The world bounds of a capsule (kind 0), cylinder (1) or cone (2) of radius r and half
+ * height h at pose (p, q), from its axis's ends and (a cylinder's or cone's) rims sampled
+ * finely: the axis is the body's y; a cone's base lies h/2 below its origin, its apex 3h/2
+ * above. */
+static void round_bounds(int kind, float r, float h, tb_vec3 p, tb_quat q, double lo[3],
+                         double hi[3])
+{
+    const double ends[2] = { kind == 2 ? -h / 2.0 : -h, kind == 2 ? 1.5 * h : h };
+    for (int i = 0; i < 3; i++) lo[i] = INFINITY, hi[i] = -INFINITY;
+    for (int e = 0; e < 2; e++) {
+        int rim = kind == 1 || (kind == 2 && e == 0);
+        for (int k = 0; k < (rim ? 4096 : 1); k++) {
+            double t = 2 * 3.14159265358979 * k / 4096;
+            double local[3] = { rim ? r * cos(t) : 0, ends[e], rim ? r * sin(t) : 0 }, v[3];
+            th_quat_rotate(q, local, v);
+            const double c[3] = { p.x, p.y, p.z }, ball = kind == 0 ? r : 0;
+            for (int i = 0; i < 3; i++) {
+                lo[i] = fmin(lo[i], c[i] + v[i] - ball);
+                hi[i] = fmax(hi[i], c[i] + v[i] + ball);
+            }
+        }
+    }
+}
+
+/* Capsules, cylinders and cones: the AABB bounds the turned shape itself (its axis's ends
+ * and rims), not its turned local box, which is up to 1.4 times wider on each axis. */
+static void test_random_round_shapes(void** state)
+{
+    (void)state;
+    tb_world* w = zero_gravity_world();
+    th_rng rng = th_rng_seed(777);
+    tb_shape_def sd = tb_default_shape_def();
+    tb_body_id ids[N_BODIES];
+    float radius[N_BODIES], half[N_BODIES];
+    for (int i = 0; i < N_BODIES; i++) {
+        radius[i] = th_rng_range(&rng, 0.05f, 2);
+        half[i] = th_rng_range(&rng, 0.05f, 3);
+        tb_shape_id s;
+        if (i % 3 == 0) th_assert_ok(tb_shape_create_capsule(w, &sd, radius[i], half[i], &s));
+        if (i % 3 == 1) th_assert_ok(tb_shape_create_cylinder(w, &sd, radius[i], half[i], &s));
+        if (i % 3 == 2) th_assert_ok(tb_shape_create_cone(w, &sd, radius[i], half[i], &s));
+        tb_body_def d = th_dynamic_def(s, th_v3(th_rng_range(&rng, -50, 50),
+                                                th_rng_range(&rng, -50, 50),
+                                                th_rng_range(&rng, -50, 50)));
+        d.rotation = th_rng_quat(&rng);
+        ids[i] = th_body(w, &d);
+    }
+    th_assert_ok(tb_world_step(w, DT));
+    tb_vec3 mn[N_BODIES], mx[N_BODIES], p[N_BODIES];
+    tb_quat q[N_BODIES];
+    th_assert_ok(tb_world_read_transforms(w, ids, N_BODIES, p, q));
+    th_assert_ok(tb_world_read_aabbs(w, ids, N_BODIES, mn, mx));
+    for (int b = 0; b < N_BODIES; b++) {
+        double lo[3], hi[3];
+        round_bounds(b % 3, radius[b], half[b], p[b], q[b], lo, hi);
+        const double got_lo[3] = { mn[b].x, mn[b].y, mn[b].z };
+        const double got_hi[3] = { mx[b].x, mx[b].y, mx[b].z };
+        for (int i = 0; i < 3; i++)
+            if (!(got_lo[i] <= lo[i] + 1e-4 && got_hi[i] >= hi[i] - 1e-4) ||
+                !th_near(got_lo[i], lo[i], 1e-3, 0) || !th_near(got_hi[i], hi[i], 1e-3, 0))
+                fail_msg("round shape %d (kind %d) axis %d: AABB [%.7g, %.7g], shape spans "
+                         "[%.7g, %.7g]", b, b % 3, i, got_lo[i], got_hi[i], lo[i], hi[i]);
+    }
+    th_world_destroy(w);
+}
+
 /* A static plane's AABB is unbounded in practice (>= 1e17 half width on every axis) but
  * finite, so later stages can do arithmetic on it. */
 static void test_plane_aabb(void** state)
@@ -185,6 +251,7 @@ int main(void)
         cmocka_unit_test(test_random_boxes),
         cmocka_unit_test(test_random_spheres),
         cmocka_unit_test(test_box_45_degrees),
+        cmocka_unit_test(test_random_round_shapes),
         cmocka_unit_test(test_aabb_follows_pose),
         cmocka_unit_test(test_plane_aabb),
     };
