@@ -1,10 +1,10 @@
-/* The narrowphase's two kernels (narrowphase/contacts, then hull_points) driven alone,
- * without the rest of the step.
+/* The narrowphase's kernels for the shapes without round ones (narrowphase/contacts,
+ * hull_sat, then hull_points) driven alone, without the rest of the step.
  *
  * Bodies are made through the public API and uploaded with tb_world_flush; the test owns
- * the other buffers the kernel uses (counters, body_pairs, pairs and manifolds with both
- * halves), writes the pair list and params, records one indirect dispatch and reads the
- * manifolds back.
+ * the other buffers the kernels use (counters, body_pairs, pairs, colour_work and manifolds
+ * with both halves), writes the pair list and params, records the kernels' indirect
+ * dispatches and reads the manifolds back.
  *
  * Checks are by property against plain C geometry in double (DESIGN.md §7): the two surface
  * points of every contact point (the point moved by half the separation either way along
@@ -39,10 +39,12 @@
 
 /* ---- plumbing: the kernel's buffers, one dispatch, read back ---------------------------- */
 
-enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS, BUF_COUNT };
+enum { BUF_COUNTERS, BUF_BODY_PAIRS, BUF_PAIRS, BUF_MANIFOLDS, BUF_PREV_MANIFOLDS,
+       BUF_COLOUR_WORK, BUF_COUNT };
 /* The manifolds are no bindings: the kernels find them at the params' addresses. */
 static const uint32_t rig_binding[BUF_COUNT] = { TB_BIND_COUNTERS, TB_BIND_BODY_PAIRS,
-                                                 TB_BIND_PAIRS, UINT32_MAX, UINT32_MAX };
+                                                 TB_BIND_PAIRS, UINT32_MAX, UINT32_MAX,
+                                                 TB_BIND_COLOUR_WORK };
 /* Most hull and box shapes a rig keeps the geometry of, in double. */
 #define HULL_CAP 1024u
 
@@ -64,7 +66,7 @@ typedef struct thull {
 typedef struct rig {
     tb_world* w;
     uint32_t cap;                 /* pairs per half */
-    VkPipeline pipeline, hull_points;   /* the narrowphase's two passes */
+    VkPipeline pipeline, hull_sat, hull_points;   /* the narrowphase's three passes */
     VkCommandBuffer cb;
     tb_buffer dev[BUF_COUNT];     /* device-local, bound to the world's set or addressed */
     tb_buffer up, down;           /* host-visible images of the four, back to back */
@@ -72,6 +74,7 @@ typedef struct rig {
     tb_gpu_counters counters;
     tb_gpu_uvec4* body_pairs;     /* MAX_SLOTS */
     tb_gpu_uvec4* pairs;          /* 2 * cap; half h starts at h * cap */
+    uint32_t* colour_work;        /* 2 * cap: contacts lists hull_sat's pairs in it */
     tb_gpu_manifold* manifolds;   /* 2 * cap: the manifolds of each half's pairs; a run
                                      binds its half's as this step's, the other's as last
                                      step's */
@@ -87,6 +90,7 @@ static VkDeviceSize rig_bytes(const rig* r, int i)
     case BUF_COUNTERS: return sizeof(tb_gpu_counters);
     case BUF_BODY_PAIRS: return MAX_SLOTS * sizeof(tb_gpu_uvec4);
     case BUF_PAIRS: return 2 * (VkDeviceSize)r->cap * sizeof(tb_gpu_uvec4);
+    case BUF_COLOUR_WORK: return 2 * (VkDeviceSize)r->cap * sizeof(uint32_t);
     default: return (VkDeviceSize)r->cap * sizeof(tb_gpu_manifold);
     }
 }
@@ -95,7 +99,7 @@ static void* rig_host(rig* r, int i, uint32_t parity)
 {
     void* host[BUF_COUNT] = { &r->counters, r->body_pairs, r->pairs,
                               r->manifolds + parity * r->cap,
-                              r->manifolds + (parity ^ 1u) * r->cap };
+                              r->manifolds + (parity ^ 1u) * r->cap, r->colour_work };
     return host[i];
 }
 
@@ -118,8 +122,9 @@ static rig* rig_create(uint32_t cap)
     r->body_pairs = calloc(MAX_SLOTS, sizeof *r->body_pairs);
     r->pairs = calloc(2 * (size_t)cap, sizeof *r->pairs);
     r->manifolds = calloc(2 * (size_t)cap, sizeof *r->manifolds);
+    r->colour_work = calloc(2 * (size_t)cap, sizeof *r->colour_work);
     r->hulls = calloc(HULL_CAP, sizeof *r->hulls);
-    assert_true(r->body_pairs && r->pairs && r->manifolds && r->hulls);
+    assert_true(r->body_pairs && r->pairs && r->manifolds && r->colour_work && r->hulls);
     tb_world* w = r->w;
     const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
@@ -135,6 +140,8 @@ static rig* rig_create(uint32_t cap)
     th_assert_ok(tb_buffer_create(&w->memory, total, usage, 1, &r->up));
     th_assert_ok(tb_buffer_create(&w->memory, total, usage, 1, &r->down));
     th_assert_ok(tb_pipeline_create(&w->pipelines, "narrowphase/contacts", GROUP, &r->pipeline));
+    th_assert_ok(tb_pipeline_create(&w->pipelines, "narrowphase/hull_sat",
+                                    TB_WIDE_WORKGROUP_SIZE, &r->hull_sat));
     th_assert_ok(tb_pipeline_create(&w->pipelines, "narrowphase/hull_points", GROUP,
                                     &r->hull_points));
     th_assert_ok(tb_gpu_command_buffer(&w->gpu, &r->cb));
@@ -146,6 +153,7 @@ static void rig_destroy(rig* r)
     tb_world* w = r->w;
     vkDeviceWaitIdle(w->gpu.device);
     tb_pipeline_destroy(&w->pipelines, r->pipeline);
+    tb_pipeline_destroy(&w->pipelines, r->hull_sat);
     tb_pipeline_destroy(&w->pipelines, r->hull_points);
     vkFreeCommandBuffers(w->gpu.device, w->gpu.command_pool, 1, &r->cb);
     for (int i = 0; i < BUF_COUNT; i++) tb_buffer_destroy(&w->memory, &r->dev[i]);
@@ -155,6 +163,7 @@ static void rig_destroy(rig* r)
     free(r->body_pairs);
     free(r->pairs);
     free(r->manifolds);
+    free(r->colour_work);
     free(r->hulls);
     free(r);
 }
@@ -173,7 +182,10 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
 {
     tb_world* w = r->w;
     uint32_t groups = (count + GROUP - 1) / GROUP;
+    uint32_t wide = (count + TB_WIDE_WORKGROUP_SIZE - 1) / TB_WIDE_WORKGROUP_SIZE;
     r->counters.pair_dispatch = (tb_gpu_uvec4){ groups ? groups : 1, 1, 1, 0 };
+    r->counters.wide_pair_dispatch = (tb_gpu_uvec4){ wide ? wide : 1, 1, 1, 0 };
+    r->counters.hull_sat = (tb_gpu_uvec4){ 0, 0, 0, 0 };
     r->counters.state.y = parity;
     r->counters.state.z = count;
     th_assert_ok(tb_world_flush(w));
@@ -208,13 +220,15 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
                             &w->pipelines.set, 0, NULL);
     /* Over every pair (push constant x 0), as a world without round shapes runs them. */
     VkBuffer counters = r->dev[BUF_COUNTERS].buffer;
-    tb_pass passes[2] = {
+    tb_pass passes[3] = {
         tb_pass_with_args(r->pipeline, TB_DISPATCH_INDIRECT, counters,
                           TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0),
+        tb_pass_with_args(r->hull_sat, TB_DISPATCH_INDIRECT, counters,
+                          TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET, 0, 0, 0),
         tb_pass_with_args(r->hull_points, TB_DISPATCH_INDIRECT, counters,
                           TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0, 0, 0),
     };
-    tb_passes_record(cb, w->pipelines.layout, passes, 2, w->params_buffer.buffer);
+    tb_passes_record(cb, w->pipelines.layout, passes, 3, w->params_buffer.buffer);
     barrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
             VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     for (int i = 0; i < BUF_COUNT; i++) {

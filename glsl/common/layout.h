@@ -248,6 +248,9 @@ TB_STRUCT(tb_gpu_counters) {
                                  where they start (the round kinds first, so
                                  [TB_PAIR_KIND_HULL].z is how many round pairs
                                  narrowphase/round_cull leaves to round_points), w unused */
+    TB_UVEC4 hull_sat;        /* x the hull pairs narrowphase/contacts listed for
+                                 narrowphase/hull_sat (in colour_work's second list), yzw
+                                 unused */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)

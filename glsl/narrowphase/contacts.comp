@@ -2,16 +2,18 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
 // Narrowphase: one thread per pair of this step turns the pair into a contact manifold of
 // up to four points sharing one normal, with the impulses of last step's points of the same
 // features (warm start). Dispatched indirectly over counters.pair_dispatch. While round
 // shapes live (push.args.x set) the pairs are those round_order listed of the kinds
 // TB_PAIR_KIND_HULL and TB_PAIR_KIND_CONVEX, grouped so, rather than every pair.
 //
-// Hull pairs that touch get only their separating axis here; hull_points.comp, the next
-// pass, clips and reduces their points. The clipper's polygons (128 vec4 per thread) and
-// the SAT's loops then do not share one kernel's registers with each other and with the
-// other shapes' routines.
+// Hull pairs get only last step's separating axis tried here (hull_hull.glsl, steps 1 and
+// 1b); the pairs it does not decide are listed for narrowphase/hull_sat, the separating
+// axis test, and hull_points.comp clips and reduces the touching pairs' points. The
+// clipper's polygons (128 vec4 per thread) and the SAT's loops then do not share one
+// kernel's registers with each other and with the other shapes' routines.
 //
 // Pair p of this step is pairs[half * capacity + p] = (a, b, colour, -), half = the step
 // parity; its manifold goes to manifolds[p], normal from a to b; last step's manifolds are
@@ -84,6 +86,20 @@ uint pair_contacts(uint p)
     return count;
 }
 
+// The hull pair this thread left to narrowphase/hull_sat (np_hull_sat_pending), if any, into
+// colour_work's second list (free until the solver): one atomic per subgroup. From uniform
+// control flow.
+void list_for_sat(uint p)
+{
+    uvec4 ballot = subgroupBallot(p != NP_NONE);
+    uint n = subgroupBallotBitCount(ballot);
+    uint base = 0u;
+    if (subgroupElect() && n != 0u) base = atomicAdd(counters.hull_sat.x, n);
+    base = subgroupBroadcastFirst(base);
+    if (p != NP_NONE)
+        colour_work[params.capacity.x + base + subgroupBallotExclusiveBitCount(ballot)] = p;
+}
+
 void main()
 {
     // An abandoned step (overflow upstream) leaves last step's results alone.
@@ -98,5 +114,7 @@ void main()
         // Otherwise a thread per pair; a mesh triangle's pair is mesh_points.comp's, whole.
         mine = p < counters.state.z && !pair_has_mesh(pairs[pair_half_base() + p]);
     }
-    np_count_points(mine ? pair_contacts(p) : 0u);
+    uint count = mine ? pair_contacts(p) : 0u;
+    list_for_sat(np_hull_sat_pending);
+    np_count_points(count);
 }

@@ -10,7 +10,9 @@
 //    step), and goes straight to step 4: a resting pile repeats no separating axis test.
 //    The points are clipped afresh every step; only the choice of axis waits.
 // 2. The separating axis test (hull_sat.glsl), stopping at the first separating axis,
-//    which becomes the cached axis.
+//    which becomes the cached axis: in a pass of its own (narrowphase/hull_sat), a
+//    subgroup's lanes sharing each pair's faces and edges, where one thread a pair ran the
+//    longest tests alone while its warp waited.
 // 3. The reference axis: A's best face, unless B's is clearly better, unless the best edge
 //    pair is clearly better than that (the tolerances of box_box.glsl): faces win ties, so
 //    a resting contact keeps its axis, its reference face and its feature keys from step to
@@ -44,51 +46,44 @@ uint np_axis_of_feature(uint key)
     return np_axis_code(kind, 0u, (key >> 22u) & 0xffu);
 }
 
-// Steps 1-3: the axis, cached in the manifold. True when the pair touches within the margin
-// (its points are then step 4's, np_hull_hull_points on the cached axis code); `strict` is
-// then, for hulls that overlap, the axis of largest separation, which the tie rule may have
-// passed over (else the cached axis again).
-bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint strict)
+// Steps 1 and 1b, in narrowphase/contacts: NP_HULL_APART (the cached axis still separates),
+// NP_HULL_TOUCHING (the pair keeps its axis: `strict` is it) or NP_HULL_TEST (neither: the
+// separating axis test decides, in narrowphase/hull_sat). Sets the cached axis when it
+// decides.
+#define NP_HULL_APART 0u
+#define NP_HULL_TOUCHING 1u
+#define NP_HULL_TEST 2u
+uint np_hull_hull_cached(np_target t, np_body a, np_body b, float margin, out uint strict)
 {
+    strict = 0u;
+    uint cached = t.prev != NP_NONE ? prev_manifolds[t.prev].axis.x : 0u;
+    if (cached == 0u) return NP_HULL_TEST;
     np_hull ha = np_hull_of(a), hb = np_hull_of(b);
     np_frame b_in_a = np_frame_between(a, b), a_in_b = np_frame_between(b, a);
-    strict = 0u;
+    float s = np_axis_separation(cached, ha, hb, b_in_a, a_in_b);
+    if (s >= margin) {
+        np_set_axis(t, cached, s);
+        return NP_HULL_APART;
+    }
+    // Step 1b: a pair that had points keeps the axis they came from while the two have
+    // moved less than NP_KEEP_AXIS_MOTION against each other since it was chosen (axis.y).
+    float moved = uintBitsToFloat(prev_manifolds[t.prev].axis.y) + margin - params.contact.x;
+    if (t.prev_count > 0u && s > -NP_BIG && moved < NP_KEEP_AXIS_MOTION &&
+        np_axis_of_feature(t.prev_features.x) == cached) {
+        np_set_axis(t, cached, moved);
+        strict = cached;
+        return NP_HULL_TOUCHING;
+    }
+    return NP_HULL_TEST;
+}
 
-    uint cached = t.prev != NP_NONE ? prev_manifolds[t.prev].axis.x : 0u;
-    if (cached != 0u) {
-        float s = np_axis_separation(cached, ha, hb, b_in_a, a_in_b);
-        if (s >= margin) {
-            np_set_axis(t, cached, s);
-            return false;
-        }
-        // Step 1b: a pair that had points keeps the axis they came from while the two have
-        // moved less than NP_KEEP_AXIS_MOTION against each other since it was chosen (axis.y).
-        float moved = uintBitsToFloat(prev_manifolds[t.prev].axis.y) + margin - params.contact.x;
-        if (t.prev_count > 0u && s > -NP_BIG && moved < NP_KEEP_AXIS_MOTION &&
-            np_axis_of_feature(t.prev_features.x) == cached) {
-            np_set_axis(t, cached, moved);
-            strict = cached;
-            return true;
-        }
-    }
-
-    uint face_a, face_b, edge_a, edge_b;
-    float sep_a = np_best_face(ha, hb, b_in_a, margin, face_a);
-    if (sep_a >= margin) {
-        np_set_axis(t, np_axis_code(NP_AXIS_FACE_A, 0u, face_a), sep_a);
-        return false;
-    }
-    float sep_b = np_best_face(hb, ha, a_in_b, margin, face_b);
-    if (sep_b >= margin) {
-        np_set_axis(t, np_axis_code(NP_AXIS_FACE_B, 0u, face_b), sep_b);
-        return false;
-    }
-    float sep_e = np_best_edges(ha, hb, a_in_b, margin, edge_a, edge_b);
-    if (sep_e >= margin) {
-        np_set_axis(t, np_axis_code(NP_AXIS_EDGES, edge_a, edge_b), sep_e);
-        return false;
-    }
-
+// Step 3, after the separating axis test found no axis beyond the margin (the best face of
+// A, of B and edge pair, and their separations): the reference axis, cached. Returns
+// `strict`: for hulls that overlap, the axis of largest separation, which the tie rule may
+// have passed over (else the cached axis again).
+uint np_hull_hull_choose(np_target t, float sep_a, uint face_a, float sep_b, uint face_b,
+                         float sep_e, uint edge_a, uint edge_b)
+{
     bool ref_b = np_clearly_better(sep_b, sep_a);
     uint kept = np_axis_code(NP_AXIS_FACE_A, 0u, face_a);
     if (np_clearly_better(sep_e, ref_b ? sep_b : sep_a)) {
@@ -101,8 +96,7 @@ bool np_hull_hull_axis(np_target t, np_body a, np_body b, float margin, out uint
     // nearest at corners no axis names, and the kept axis's speculative points (or none)
     // are as good as any.
     bool overlap = max(sep_e, max(sep_a, sep_b)) < 0.0;
-    strict = overlap ? np_strict_axis(sep_a, face_a, sep_b, face_b, sep_e, edge_a, edge_b) : kept;
-    return true;
+    return overlap ? np_strict_axis(sep_a, face_a, sep_b, face_b, sep_e, edge_a, edge_b) : kept;
 }
 
 // The points of the touching pair along the axis `code`.
@@ -142,13 +136,17 @@ uint np_hull_hull_points(np_target t, np_body a, np_body b, uint code, uint stri
     return count;
 }
 
-// The first pass's part (contacts.comp): the axis, and the points left to the second pass
-// (hull_points.comp) by marking the manifold (axis.z = the strict axis, never 0). Returns
-// no points.
+// The first pass's part (contacts.comp): steps 1 and 1b. A touching pair's points are left
+// to hull_points.comp by marking the manifold (axis.z = the strict axis, never 0); a pair
+// they do not decide is left to narrowphase/hull_sat in np_hull_sat_pending (contacts.comp
+// lists it). Returns no points.
+uint np_hull_sat_pending = NP_NONE;
 uint np_hull_hull_deferred(np_target t, np_body a, np_body b, float margin)
 {
     uint strict;
-    if (np_hull_hull_axis(t, a, b, margin, strict)) manifolds[t.slot].axis.z = strict;
+    uint cached = np_hull_hull_cached(t, a, b, margin, strict);
+    if (cached == NP_HULL_TOUCHING) manifolds[t.slot].axis.z = strict;
+    if (cached == NP_HULL_TEST) np_hull_sat_pending = t.slot;
     return 0u;
 }
 

@@ -198,6 +198,8 @@ tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* re
     np->kit = *kit;
     tb_pipelines* p = kit->pipelines;
     tb_result r = tb_pipeline_create(p, "narrowphase/contacts", TB_WORKGROUP_SIZE, &np->contacts);
+    if (!r) r = tb_pipeline_create(p, "narrowphase/hull_sat", TB_WIDE_WORKGROUP_SIZE,
+                                   &np->hull_sat);
     if (!r) r = tb_pipeline_create(p, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
                                    &np->hull_points);
     if (!r) r = hull_table_init(np, replaced);
@@ -208,6 +210,7 @@ void tb_narrowphase_destroy(tb_narrowphase* np)
 {
     if (!np->kit.pipelines) return;
     tb_pipeline_destroy(np->kit.pipelines, np->contacts);
+    tb_pipeline_destroy(np->kit.pipelines, np->hull_sat);
     tb_pipeline_destroy(np->kit.pipelines, np->hull_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_points);
     tb_pipeline_destroy(np->kit.pipelines, np->mesh_reduce);
@@ -246,6 +249,12 @@ tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list*
     /* args.x 1: over the pairs of its kinds that round_order listed. */
     return per_pair_with(np, list, np->contacts, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
                          listed ? 1u : 0u);
+}
+
+tb_result tb_narrowphase_record_hull_sat(const tb_narrowphase* np, tb_pass_list* list,
+                                         VkBuffer counters)
+{
+    return per_pair_at(np, list, np->hull_sat, counters, TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
 
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,

@@ -6,10 +6,12 @@
  * for the warm start). The manifolds alternate between two arrays by the step's parity, so
  * this step's, with the solver's final impulses, are last step's for the next where they
  * lie. Its passes:
- *   narrowphase/contacts     one thread per pair: the manifold; hull pairs that touch get
- *                            only their separating axis
- *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce), recorded only
- *                            while the world has hull shapes
+ *   narrowphase/contacts     one thread per pair: the manifold; a hull pair gets only last
+ *                            step's separating axis tried, and the pairs that does not
+ *                            decide are listed for
+ *   narrowphase/hull_sat     the separating axis test of those, a subgroup per pair
+ *   narrowphase/hull_points  the touching hull pairs' points (clip and reduce); hull_sat and
+ *                            hull_points are recorded only while the world has hull shapes
  *   narrowphase/round_cull, round_order, round_points
  *                            the points of every pair with a capsule, cylinder or cone
  *                            (against any convex shape, a plane or a mesh triangle):
@@ -49,7 +51,7 @@ typedef struct tb_hull_table {
 
 typedef struct tb_narrowphase {
     tb_gpu_kit kit;
-    VkPipeline contacts, hull_points;
+    VkPipeline contacts, hull_sat, hull_points;
     VkPipeline mesh_points, mesh_reduce;   ///< made when the world's first mesh comes
     /// made when the world's first round shape comes: the round pairs apart sorted out, the
     /// others counted and grouped by kind, then their points
@@ -75,6 +77,10 @@ void tb_narrowphase_destroy(tb_narrowphase* np);
 /// otherwise over every pair.
 tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters, int listed);
+/// narrowphase/hull_sat, the separating axis test of the hull pairs contacts listed
+/// (recorded only while the world has hull shapes, between contacts and hull_points).
+tb_result tb_narrowphase_record_hull_sat(const tb_narrowphase* np, tb_pass_list* list,
+                                         VkBuffer counters);
 /// narrowphase/hull_points, the points of the touching hull pairs (recorded only while the
 /// world has hull shapes); `listed` as for contacts.
 tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,

@@ -116,6 +116,9 @@ static void narrowphase_stage(builder* b)
                                                      listed);
     end_stage(b, "narrowphase/contacts");
     if (w->hull_shapes) {
+        if (!b->r) b->r = tb_narrowphase_record_hull_sat(&w->narrowphase, &b->list,
+                                                         b->counters);
+        end_stage(b, "narrowphase/hull_sat");
         if (!b->r) b->r = tb_narrowphase_record_hull_points(&w->narrowphase, &b->list,
                                                             b->counters, listed);
         end_stage(b, "narrowphase/hull_points");
