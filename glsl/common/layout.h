@@ -172,12 +172,15 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * registers at 128 and spilled: slower); it needs 128 now. */
 #define TB_WIDE_WORKGROUP_SIZE  256
 /* Kinds of pairs, as narrowphase/round_order groups them while round shapes live: of the
- * pairs with a capsule, cylinder or cone, for round_points, the other shape's
- * TB_GPU_SHAPE_* times 3 plus the round shape's (capsule 0, cylinder 1, cone 2), under 30;
- * then contacts.comp's, those with a hull and the others (sphere, box, plane). */
-#define TB_ROUND_KINDS          32
-#define TB_PAIR_KIND_HULL       TB_U(30)
-#define TB_PAIR_KIND_CONVEX     TB_U(31)
+ * pairs with a capsule, cylinder or cone, for round_points, the shapes' kind (the other
+ * shape's TB_GPU_SHAPE_* times 3 plus the round shape's: capsule 0, cylinder 1, cone 2; under
+ * 30) times TB_GJK_BUCKETS plus the bucket of the GJK supports the pair took last step, so
+ * that a warp's GJK loops run about as long; then contacts.comp's, those with a hull and the
+ * others (sphere, box, plane). */
+#define TB_GJK_BUCKETS          4
+#define TB_ROUND_KINDS          122
+#define TB_PAIR_KIND_HULL       TB_U(120)
+#define TB_PAIR_KIND_CONVEX     TB_U(121)
 /* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
 /* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed
@@ -521,7 +524,10 @@ TB_STRUCT(tb_gpu_manifold) {
                                  the two moved since it was chosen), z while its points are
                                  left to narrowphase/hull_points the axis of largest
                                  separation (never 0), w the block solver's stiffness of
-                                 the pair (float bits; see glsl/block/) */
+                                 the pair (float bits; see glsl/block/). A pair with a
+                                 capsule, cylinder or cone keeps in y the supports its GJK
+                                 took (0: none), and in x, from narrowphase/round_cull to
+                                 round_points, last step's manifold of the pair */
     TB_VEC4 slip[TB_MAX_MANIFOLD_POINTS / 2]; /* the block solver's static friction: how far
                                  point k's two surfaces have moved apart along the tangents
                                  since it began to stick (m), in slip[k / 2].xy (k even) or .zw */

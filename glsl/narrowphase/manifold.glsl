@@ -102,11 +102,12 @@ uint np_find_previous(uint a, uint b, uint sub, uint prev_half)
     return found != NP_NONE ? found : np_find_in_run(b, a, b, sub, prev_half);
 }
 
-np_target np_target_make(uint slot, uint a, uint b, uint sub, uint prev_half)
+// The manifold `slot` continuing last step's manifold `prev` (NP_NONE: none).
+np_target np_target_after(uint slot, uint prev)
 {
     np_target t;
     t.slot = slot;
-    t.prev = np_find_previous(a, b, sub, prev_half);
+    t.prev = prev;
     t.prev_count = 0u;
     t.prev_features = uvec4(0u);
     if (t.prev != NP_NONE) {
@@ -114,6 +115,11 @@ np_target np_target_make(uint slot, uint a, uint b, uint sub, uint prev_half)
         t.prev_features = prev_manifolds[t.prev].feature;
     }
     return t;
+}
+
+np_target np_target_make(uint slot, uint a, uint b, uint sub, uint prev_half)
+{
+    return np_target_after(slot, np_find_previous(a, b, sub, prev_half));
 }
 
 // Last step's point this one continues (NP_NONE: none): the one of the same feature key.

@@ -93,11 +93,11 @@ uint np_part_type(uint i, uint c)
 }
 
 // The kind of pair p (layout.h): a round kind for round_points when it has a capsule,
-// cylinder or cone; TB_PAIR_KIND_HULL or TB_PAIR_KIND_CONVEX for contacts.comp (a compound
-// pair whose parts are all apart too); TB_ROUND_KINDS for a pair of a body and a mesh
-// triangle without a round shape (mesh_points'). The round types come last in the
-// canonical order, so the round shape is the larger type, and a hull the larger of the
-// other convex shapes.
+// cylinder or cone (its first bucket: round_cull adds the pair's); TB_PAIR_KIND_HULL or
+// TB_PAIR_KIND_CONVEX for contacts.comp (a compound pair whose parts are all apart too);
+// TB_ROUND_KINDS for a pair of a body and a mesh triangle without a round shape
+// (mesh_points'). The round types come last in the canonical order, so the round shape is
+// the larger type, and a hull the larger of the other convex shapes.
 uint np_pair_kind(uint p)
 {
     uvec4 pair = pairs[pair_half_base() + p];
@@ -105,7 +105,8 @@ uint np_pair_kind(uint p)
     uvec2 child = np_pair_children(pair);
     uint ta = np_part_type(pair.x, child.x), tb = np_part_type(pair.y, child.y);
     uint first = min(ta, tb), second = max(ta, tb);
-    if (np_is_round(second)) return first * 3u + second - TB_GPU_SHAPE_CAPSULE;
+    uint round_kind = first * 3u + second - TB_GPU_SHAPE_CAPSULE;
+    if (np_is_round(second)) return round_kind * TB_GJK_BUCKETS;
     if (second == TB_GPU_SHAPE_MESH || second == TB_GPU_SHAPE_HEIGHTFIELD) return TB_ROUND_KINDS;
     return second == TB_GPU_SHAPE_HULL ? TB_PAIR_KIND_HULL : TB_PAIR_KIND_CONVEX;
 }

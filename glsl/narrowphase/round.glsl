@@ -522,6 +522,9 @@ bool np_segments_normal(vec3 p1, vec3 q1, vec3 p2, vec3 q2, float ra, float rb, 
 // capsule against a capsule, else GJK on the cores and EPA where they overlap. False when
 // they are farther apart than the margin (or EPA found nothing); GJK gives up on a pair as
 // soon as a support plane shows that.
+// The supports GJK took in np_round_normal (0 where it did not run): round_points keeps them
+// in the manifold (axis.y), and round_cull groups the pair by them in the next step.
+uint np_round_supports = 0u;
 bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
                      out vec3 pa, out vec3 pb)
 {
@@ -537,6 +540,7 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec
     np_convex A = np_convex_moved(world_a, o), B = np_convex_moved(world_b, o);
     np_gjk_result g = np_gjk_within(A, B, A.radius + B.radius + margin,
                                     NP_GJK_CONTACT_TOLERANCE);
+    np_round_supports = g.iterations;
     n = vec3(0.0, 1.0, 0.0);
     pa = g.pa;
     pb = g.pb;

@@ -5,14 +5,15 @@
 // The first pass of the narrowphase while round shapes live: every pair's kind (pair.glsl's
 // np_pair_kind). The round pairs surely apart get their empty manifold here
 // (np_round_apart: bounding balls, the capsules' closed form, GJK's first support). The
-// kind of each pair left for round_points or contacts.comp (TB_ROUND_KINDS for none: a
-// mesh triangle's pair, or apart) goes to colour_work's second list, free until the solver,
-// and is counted in counters.round_kinds[].x, for round_order, which lists those pairs
-// grouped by kind. Most of a pile's round pairs are apart, and one GJK support tells; in
-// round_points their threads would idle beside those that build a manifold. The pairs are
-// taken in their own order, not grouped: neighbouring pairs share bodies, and the loads of
-// a warp then meet in the caches (grouped by kind first, this pass took a third longer). A
-// thread per pair, dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
+// kind of each pair left for round_points (with the bucket of the supports its GJK took
+// last step) or contacts.comp (TB_ROUND_KINDS for none: a mesh triangle's pair, or apart)
+// goes to colour_work's second list, free until the solver, and is counted in
+// counters.round_kinds[].x, for round_order, which lists those pairs grouped by kind. Most
+// of a pile's round pairs are apart, and one GJK support tells; in round_points their
+// threads would idle beside those that build a manifold. The pairs are taken in their own
+// order, not grouped: neighbouring pairs share bodies, and the loads of a warp then meet in
+// the caches (grouped by kind first, this pass took a third longer). A thread per pair,
+// dispatched indirectly over counters.wide_pair_dispatch, in workgroups of
 // TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"
 #include "quat.glsl"
@@ -31,18 +32,34 @@
 #include "round.glsl"
 #include "round_kinds.glsl"
 
-// Whether pair p is apart (then its empty manifold is written).
-bool cull(uint p)
+// The bucket of the GJK supports pair q (p) took last step (round_points keeps them in its
+// manifold's axis.y; they change for about one pair in ten from step to step): up to 4,
+// 5 and 6 (and a pair new or without GJK last step), 7 and 8, more. Grouped by it too, a
+// warp's GJK loops run about as long. Last step's manifold is found here, and where it is
+// left for round_points (this step's manifold's axis.x) so that it does not look again.
+uint supports_bucket(np_pair q, uint p)
 {
-    // Last step's manifold is not looked for: a manifold without points takes nothing from
-    // it (its stiffness carry-over, axis.w, is read for points only and zeroed by the block
-    // solver's start, block/start.comp), and the search is a loop over last step's pairs.
+    uint prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
+    manifolds[p].axis.x = prev;
+    uint supports = prev != NP_NONE ? prev_manifolds[prev].axis.y : 0u;
+    if (supports == 0u) return 1u;
+    return supports <= 4u ? 0u : (supports <= 6u ? 1u : (supports <= 8u ? 2u : 3u));
+}
+
+// Round pair p of `kind` (its first bucket) with its bucket, or TB_ROUND_KINDS when it is
+// apart: then its empty manifold is written.
+uint round_kind(uint p, uint kind)
+{
+    // Last step's manifold is not looked for before the cull: a manifold without points
+    // takes nothing from it (its stiffness carry-over, axis.w, is read for points only and
+    // zeroed by the block solver's start, block/start.comp), and the search is a loop over
+    // last step's pairs.
     np_pair q = np_pair_bodies(p);
-    if (!np_round_apart(q.first, q.second, q.margin)) return false;
+    if (!np_round_apart(q.first, q.second, q.margin)) return kind + supports_bucket(q, p);
     // As round_points with no points.
     np_pair_start(q);
     np_pair_finish(q, 0u, vec3(0.0, 1.0, 0.0));
-    return true;
+    return TB_ROUND_KINDS;
 }
 
 void main()
@@ -51,7 +68,7 @@ void main()
     uint p = pair_thread_index();
     bool live = !step_aborted() && p < counters.state.z;
     uint kind = live ? np_pair_kind(p) : TB_ROUND_KINDS;
-    if (kind < TB_PAIR_KIND_HULL && cull(p)) kind = TB_ROUND_KINDS;
+    if (kind < TB_PAIR_KIND_HULL) kind = round_kind(p, kind);
     if (live) colour_work[params.capacity.x + p] = kind;
     // The pairs left of each kind, counted for round_order.
     np_kind_add(kind);

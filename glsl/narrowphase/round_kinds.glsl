@@ -8,15 +8,22 @@
 shared uint np_kind_count[TB_ROUND_KINDS];   // the workgroup's pairs of each kind
 
 // Of this subgroup's lanes of this lane's kind: x this lane's rank, y the lowest lane, z how
-// many they are.
+// many they are. A round per kind present in the subgroup (the lowest lane not yet ranked
+// names it), not per kind there is.
 uvec3 np_kind_peers(uint kind)
 {
     uvec3 mine = uvec3(0u);
-    for (uint k = 0u; k < TB_ROUND_KINDS; k++) {
-        uvec4 same = subgroupBallot(kind == k);
-        if (kind == k)
+    bool ranked = false;
+    for (uint round = 0u; round < 128u; round++) {
+        uvec4 left = subgroupBallot(!ranked);
+        if (subgroupBallotBitCount(left) == 0u) break;
+        uint named = subgroupShuffle(kind, subgroupBallotFindLSB(left));
+        uvec4 same = subgroupBallot(kind == named);
+        if (kind == named) {
             mine = uvec3(subgroupBallotExclusiveBitCount(same), subgroupBallotFindLSB(same),
                          subgroupBallotBitCount(same));
+            ranked = true;
+        }
     }
     return mine;
 }

@@ -30,7 +30,9 @@
 
 uint round_points(uint p)
 {
-    np_pair q = np_pair_load(p);
+    // round_cull found last step's manifold of the pair (round_cull.comp).
+    np_pair q = np_pair_bodies(p);
+    q.t = np_target_after(p, manifolds[p].axis.x);
     np_pair_start(q);
     vec3 normal;
     uint first = q.first.type;
@@ -39,6 +41,7 @@ uint round_points(uint p)
     if (on_mesh) tri = np_load_triangle(q.first, q.triangle, q.first.rot, q.first.pos);
     uint count = np_round_contacts(q.t, q.first, q.second, on_mesh, tri, q.margin, normal);
     np_pair_finish(q, count, normal);
+    manifolds[q.t.slot].axis.y = np_round_supports;
     return count;
 }
 
