@@ -177,10 +177,10 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  * 30) times TB_GJK_BUCKETS plus the bucket of the GJK supports the pair took last step, so
  * that a warp's GJK loops run about as long; then contacts.comp's, those with a hull and the
  * others (sphere, box, plane). */
-#define TB_GJK_BUCKETS          4
-#define TB_ROUND_KINDS          122
-#define TB_PAIR_KIND_HULL       TB_U(120)
-#define TB_PAIR_KIND_CONVEX     TB_U(121)
+#define TB_GJK_BUCKETS          8
+#define TB_ROUND_KINDS          242
+#define TB_PAIR_KIND_HULL       TB_U(240)
+#define TB_PAIR_KIND_CONVEX     TB_U(241)
 /* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
 /* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed

@@ -33,17 +33,19 @@
 #include "round_kinds.glsl"
 
 // The bucket of the GJK supports pair q (p) took last step (round_points keeps them in its
-// manifold's axis.y; they change for about one pair in ten from step to step): up to 4,
-// 5 and 6 (and a pair new or without GJK last step), 7 and 8, more. Grouped by it too, a
-// warp's GJK loops run about as long. Last step's manifold is found here, and where it is
-// left for round_points (this step's manifold's axis.x) so that it does not look again.
+// manifold's axis.y; they change for about one pair in ten from step to step): up to 3,
+// each of 4 to 8 (a pair new or without GJK last step as 6), 9 and 10, more. Grouped by it
+// too, a warp's GJK loops run about as long (with four buckets, up to 4, 5-6, 7-8 and more,
+// round_points took 4 % longer on an H200). Last step's manifold is found here, and where
+// it is left for round_points (this step's manifold's axis.x) so that it does not look
+// again.
 uint supports_bucket(np_pair q, uint p)
 {
     uint prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
     manifolds[p].axis.x = prev;
     uint supports = prev != NP_NONE ? prev_manifolds[prev].axis.y : 0u;
-    if (supports == 0u) return 1u;
-    return supports <= 4u ? 0u : (supports <= 6u ? 1u : (supports <= 8u ? 2u : 3u));
+    if (supports == 0u) supports = 6u;
+    return supports <= 3u ? 0u : (supports <= 8u ? supports - 3u : (supports <= 10u ? 6u : 7u));
 }
 
 // Round pair p of `kind` (its first bucket) with its bucket, or TB_ROUND_KINDS when it is

@@ -12,10 +12,11 @@
 // of a kind (round_kinds.glsl) and claims a run of the kind's range with one atomic; the
 // order within a kind follows the claims (round_points' and contacts' results do not
 // depend on it). A round pair's kind includes the bucket of its last GJK supports
-// (layout.h), so a warp of round_points also gets pairs of about as many supports: that
-// took round_points from 1.21 to 1.05 ms in the 100k shapes pile on an H100 (its warps' GJK
-// lanes were busy 59 % of the loops' rounds). A thread per pair, dispatched indirectly over
-// counters.wide_pair_dispatch, in workgroups of TB_WIDE_WORKGROUP_SIZE.
+// (layout.h), so a warp of round_points also gets pairs of about as many supports: in four
+// buckets that took round_points from 1.21 to 1.05 ms in the 100k shapes pile on an H100
+// (its warps' GJK lanes were busy 59 % of the loops' rounds), in eight 4 % less again
+// (H200). A thread per pair, dispatched indirectly over counters.wide_pair_dispatch, in
+// workgroups of TB_WIDE_WORKGROUP_SIZE.
 #include "world.glsl"
 #include "round_kinds.glsl"
 
