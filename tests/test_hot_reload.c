@@ -158,6 +158,30 @@ static void test_environment_and_broken_start(void** state)
     th_world_destroy(w);
 }
 
+/* Shader files that include each other without guards are refused with a sentence (the
+ * compiler recursed without end), and the built-in shader runs. */
+static void test_include_cycle_is_refused(void** state)
+{
+    (void)state;
+    char path[256];
+    snprintf(path, sizeof path, "%s/step/cycle_a.glsl", shader_dir);
+    write_text(path, "#include \"cycle_b.glsl\"\n");
+    snprintf(path, sizeof path, "%s/step/cycle_b.glsl", shader_dir);
+    write_text(path, "#include \"cycle_a.glsl\"\n");
+    edit("step/begin.comp", "void main()", "#include \"cycle_a.glsl\"\nvoid main()");
+    setenv("TUMBLE_SHADER_DIR", shader_dir, 1);
+    tb_world* w = th_world_create_ex(NULL, 1);
+    unsetenv("TUMBLE_SHADER_DIR");
+    const char* warning = th_world_log(w)->last_warning;
+    assert_non_null(strstr(warning, "include guards"));
+    assert_non_null(strstr(warning, "step/begin runs the built-in shader"));
+    tb_body_def def = th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 100, 0));
+    tb_body_id body = th_body(w, &def);
+    th_assert_near(fall_in_one_step(w, body), -9.81 * DT, 1e-4, 1e-3);
+    th_world_destroy(w);
+    edit("step/begin.comp", "#include \"cycle_a.glsl\"\nvoid main()", "void main()");
+}
+
 /* The blast plugin compiling blast.comp beside it, from a copy: with a shader directory
  * set, editing blast.comp turns the push into a pull. */
 static void test_plugin_glsl_is_watched(void** state)
@@ -212,6 +236,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_edits_take_effect_while_stepping),
         cmocka_unit_test(test_environment_and_broken_start),
+        cmocka_unit_test(test_include_cycle_is_refused),
         cmocka_unit_test(test_plugin_glsl_is_watched),
         cmocka_unit_test(test_bad_directory_is_refused),
     };

@@ -89,10 +89,14 @@ static void set_text(shaderc_include_result* result, const char* name, char* tex
     result->content_length = text ? size : 0;
 }
 
+/* Includes nested deeper than this are refused: files without include guards that include
+ * each other (a.glsl includes b.glsl includes a.glsl) would make the compiler recurse
+ * without end. Tumble's own go 4 deep. */
+#define MAX_INCLUDE_DEPTH 32
+
 static shaderc_include_result* include_file(void* user, const char* requested, int type,
                                             const char* requesting, size_t depth)
 {
-    (void)depth;
     include_context* ctx = user;
     shaderc_include_result* result = calloc(1, sizeof *result);
     char found[PATH_MAX], name[PATH_MAX + 16];
@@ -100,7 +104,13 @@ static shaderc_include_result* include_file(void* user, const char* requested, i
     char* text = NULL;
     const tb_glsl_header* header = NULL;
     if (!result) return NULL;
-    if (resolve(ctx, requested, type, requesting, found) && (text = read_text(found, &size))) {
+    if (depth > MAX_INCLUDE_DEPTH) {
+        snprintf(name, sizeof name, "includes nested more than %d deep at \"%s\" (files "
+                 "that include each other without include guards?)", MAX_INCLUDE_DEPTH,
+                 requested);
+        set_text(result, "", copy_string(name), strlen(name));
+    } else if (resolve(ctx, requested, type, requesting, found) &&
+               (text = read_text(found, &size))) {
         set_text(result, found, text, size);
         if (!note_file(ctx->out, found)) ctx->out_of_memory = 1;
     } else if ((header = embedded_header(requested))) {
