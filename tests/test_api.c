@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tumble_vulkan.h"
+
 #define DT (1.0f / 60.0f)
 #define FX_BODIES 3
 
@@ -538,6 +540,32 @@ static void test_null_and_unknown_body_ids(void** state)
     check_body_calls(fx, unknown, TB_ERROR_INVALID_ID);
 }
 
+/* A NULL output is refused with a sentence of its own, not an older failure's. */
+static void expect_null_out(fixture* fx, tb_result r, const char* name)
+{
+    th_assert_result(r, TB_ERROR_INVALID_ARGUMENT);
+    if (!strstr(tb_world_last_error(fx->w), name))
+        fail_msg("%s: last error \"%s\" does not name it", name, tb_world_last_error(fx->w));
+    th_assert_result(tb_world_step(fx->w, -1.0f), TB_ERROR_INVALID_ARGUMENT); /* an older one */
+}
+
+static void test_null_outputs(void** state)
+{
+    fixture* fx = *state;
+    uint32_t count;
+    th_assert_result(tb_world_step(fx->w, -1.0f), TB_ERROR_INVALID_ARGUMENT);
+    expect_null_out(fx, tb_world_read_contacts(fx->w, NULL, 4, &count), "tb_world_read_contacts");
+    expect_null_out(fx, tb_world_read_contacts(fx->w, NULL, 0, NULL), "tb_world_read_contacts");
+    expect_null_out(fx, tb_world_get_stats(fx->w, NULL), "tb_world_get_stats");
+    expect_null_out(fx, tb_world_device_info(fx->w, NULL), "tb_world_device_info");
+    expect_null_out(fx, tb_world_vulkan_device(fx->w, NULL), "tb_world_vulkan_device");
+    expect_null_out(fx, tb_world_vulkan_bodies(fx->w, NULL), "tb_world_vulkan_bodies");
+    expect_null_out(fx, tb_world_vulkan_contacts(fx->w, NULL), "tb_world_vulkan_contacts");
+    /* No room, no writes: a NULL array with capacity 0 only counts. */
+    th_assert_ok(tb_world_read_contacts(fx->w, NULL, 0, &count));
+    assert_int_equal(tb_world_body_ids(fx->w, NULL, 8), 0);
+}
+
 /* An id from another world never existed in this one. */
 static void test_foreign_body_id(void** state)
 {
@@ -711,6 +739,7 @@ int main(void)
         cmocka_unit_test(test_world_create_errors),
         cmocka_unit_test(test_broadphase_choice),
         T(test_null_and_unknown_body_ids),
+        T(test_null_outputs),
         T(test_foreign_body_id),
         T(test_stale_body_ids),
         T(test_shape_ids),

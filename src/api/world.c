@@ -140,14 +140,20 @@ tb_result tb_world_step(tb_world* w, float dt)
 
 tb_result tb_world_device_info(const tb_world* w, tb_device_info* out)
 {
-    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!out)
+        return tb_fail(&((tb_world*)w)->diag, TB_ERROR_INVALID_ARGUMENT,
+                       "tb_world_device_info: out is NULL");
     tb_world_device(w, out);
     return TB_OK;
 }
 
 tb_result tb_world_get_stats(const tb_world* w, tb_world_stats* out)
 {
-    if (!w || !out) return TB_ERROR_INVALID_ARGUMENT;
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!out)
+        return tb_fail(&((tb_world*)w)->diag, TB_ERROR_INVALID_ARGUMENT,
+                       "tb_world_get_stats: out is NULL");
     tb_world_stats_read(w, out);
     return TB_OK;
 }
