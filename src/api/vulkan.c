@@ -21,7 +21,9 @@ tb_result tb_world_create_vulkan(const tb_world_def* def, const tb_vulkan_extens
 tb_result tb_world_vulkan_device(const tb_world* w, tb_vulkan_device* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (!out) return tb_fail(&((tb_world*)w)->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_vulkan_device: out is NULL");
+    if (!out)
+        return tb_fail(&((tb_world*)w)->diag, TB_ERROR_INVALID_ARGUMENT,
+                       "tb_world_vulkan_device: out is NULL");
     *out = (tb_vulkan_device){
         .instance = w->gpu.instance, .physical_device = w->gpu.physical,
         .device = w->gpu.device, .queue = w->gpu.queue, .queue_family = w->gpu.queue_family,
@@ -33,7 +35,8 @@ tb_result tb_world_vulkan_device(const tb_world* w, tb_vulkan_device* out)
 tb_result tb_world_vulkan_bodies(tb_world* w, tb_vulkan_bodies* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_vulkan_bodies: out is NULL");
+    if (!out)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_vulkan_bodies: out is NULL");
     tb_result r = tb_world_flush(w);
     if (r) return r;
     const tb_body_store* s = &w->store;
@@ -50,7 +53,9 @@ tb_result tb_world_vulkan_bodies(tb_world* w, tb_vulkan_bodies* out)
 tb_result tb_world_vulkan_contacts(tb_world* w, tb_vulkan_contacts* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_vulkan_contacts: out is NULL");
+    if (!out)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT,
+                       "tb_world_vulkan_contacts: out is NULL");
     memset(out, 0, sizeof *out);
     tb_world_contact_buffer(w, &out->manifolds, &out->count, &out->size);
     out->offset = 0;
