@@ -54,7 +54,7 @@ TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%) $(TEST_CXX:tests/%.cpp=$(BU
 CXX        ?= g++
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/bench-distance
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
-REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early
+REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
                 $(BUILD)/tests/plugins/count_events.so
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag tools/render/shaders/*.comp))

@@ -204,6 +204,7 @@ static void test_broken_plugins_are_refused(void** state)
         { "tests/plugins/refused_bad_spirv.so", "is not valid SPIR-V" },
         { "tests/plugins/refused_bad_glsl.so", "broken.comp:5: error" },
         { "tests/plugins/refused_pairs_early.so", "per-pair stage" },
+        { "tests/plugins/refused_huge_stage.so", "2147483647 bytes" },
         { "tests/plugins/no_such_plugin.so", "cannot load plugin" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)

@@ -10,6 +10,9 @@
 
 #define PLUGIN_MIN_SIZE (offsetof(tb_plugin, stages) + sizeof(const tb_plugin_stage*))
 #define STAGE_MIN_SIZE (offsetof(tb_plugin_stage, glsl_path) + sizeof(const char*))
+/* Far beyond any version's tb_plugin_stage: a larger size field is wrong, and as the stages'
+ * stride it would send the loader far past the plugin's array. */
+#define STAGE_MAX_SIZE 4096u
 
 static tb_diag* diag_of(const tb_plugins* pl)
 {
@@ -53,6 +56,10 @@ static tb_result read_description(tb_plugins* pl, const char* path, const tb_plu
     if (out->stage_count && (!out->stages || out->stages[0].size < STAGE_MIN_SIZE))
         return tb_fail(diag_of(pl), TB_ERROR_INVALID_ARGUMENT, "plugin %s: its stages are missing "
                        "or their size field is wrong", path);
+    if (out->stage_count && out->stages[0].size > STAGE_MAX_SIZE)
+        return tb_fail(diag_of(pl), TB_ERROR_INVALID_ARGUMENT, "plugin %s: its stages say they "
+                       "are %u bytes each; a tb_plugin_stage is at most %u", path,
+                       out->stages[0].size, STAGE_MAX_SIZE);
     return TB_OK;
 }
 

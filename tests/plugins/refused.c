@@ -7,6 +7,8 @@
 #define REFUSED_BAD_SPIRV 4   /* a stage whose SPIR-V is broken after a good header */
 #define REFUSED_BAD_GLSL 5    /* a stage whose GLSL does not compile */
 #define REFUSED_PAIRS_EARLY 6 /* a per-pair stage at the pre-step point */
+#define REFUSED_HUGE_STAGE 7  /* two stages whose size field says 2 GB: the second would be
+                                 read far past the array */
 
 #if REFUSED == REFUSED_BAD_SPIRV
 /* A module header (magic, version 1.5, generator, bound, schema) and then nonsense. */
@@ -37,6 +39,10 @@ static tb_plugin_stage early_stage(void)
 }
 #endif
 
+#if REFUSED == REFUSED_HUGE_STAGE
+static tb_plugin_stage huge[2];
+#endif
+
 static tb_plugin plugin = {
     .size = sizeof(tb_plugin), .abi_version = TB_PLUGIN_ABI_VERSION, .name = "refused",
     .stage_count = 1, .stages = stages,
@@ -56,6 +62,11 @@ TB_PLUGIN_EXPORT const tb_plugin* tb_plugin_entry(uint32_t host_abi_version)
     static tb_plugin_stage early[1];
     early[0] = early_stage();
     plugin.stages = early;
+#elif REFUSED == REFUSED_HUGE_STAGE
+    huge[0] = huge[1] = stages[0];
+    huge[0].size = 0x7fffffffu;
+    plugin.stages = huge;
+    plugin.stage_count = 2;
 #endif
     return &plugin;
 }
