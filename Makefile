@@ -56,7 +56,7 @@ TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/b
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
-                $(BUILD)/tests/plugins/count_events.so
+                $(BUILD)/tests/plugins/count_events.so $(BUILD)/tests/plugins/nested_step.so
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag tools/render/shaders/*.comp))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
@@ -277,6 +277,11 @@ $(BUILD)/tests/plugins/count_events.so: tests/plugins/count_events.c abi/tumble_
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
 
+$(BUILD)/tests/plugins/nested_step.so: tests/plugins/nested_step.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
+
 $(BUILD)/tests/plugins/broken.comp: tests/plugins/broken.comp
 	@mkdir -p $(dir $@)
 	$(Q)cp $< $@
@@ -288,6 +293,8 @@ $(BUILD)/tests/%: tests/%.cpp include/tumble.h abi/tumble_plugin.h $(BUILD)/libt
 	$(Q)$(CXX) -std=c++11 -O2 -Wall -Wextra -Wpedantic -Werror -Iinclude -Iabi -o $@ $< $(BUILD)/libtumble.a $(LIBS)
 
 $(BUILD)/tests/test_distance: tests/convex_reference.h
+# The test plugins that call the C API find it in the test binary.
+$(BUILD)/tests/test_plugin: TOOL_LINK += -rdynamic
 
 $(BUILD)/tests/%: tests/%.c tests/harness.c tests/harness.h $(TOOL_DEPS)
 	$(call say,LD,$@)

@@ -111,8 +111,9 @@ typedef struct tb_contact_events {
 
 /// Called for each step in which some contact began or ended, in step order, before the
 /// step call returns (tb_world_step_n: once per step that had events). `world` may be
-/// queried (see above) but not stepped. Contacts that already touched when the plugin was
-/// loaded do not begin again.
+/// queried (see above) but not stepped: tb_world_step, tb_world_step_n,
+/// tb_world_load_plugin and tb_world_unload_plugin are refused there. Contacts that
+/// already touched when the plugin was loaded do not begin again.
 typedef void tb_plugin_contacts_fn(tb_world* world, void* user, const tb_contact_events* events);
 /// Check a parameter block before it is taken (tb_world_set_plugin_param): return 0 to
 /// accept it, else write a sentence saying what is wrong to `why` (why_size bytes).

@@ -448,6 +448,22 @@ static void test_many_events_grow_the_buffer(void** state)
     th_world_destroy(w);
 }
 
+/* A contact callback that steps its world is refused (the ABI forbids it), and only the
+ * outer steps are taken. */
+static void test_callbacks_cannot_step(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    bouncing_balls(w);
+    tb_plugin_id nested;
+    th_assert_ok(tb_world_load_plugin(w, plugin_path("tests/plugins/nested_step.so"), &nested));
+    for (int s = 0; s < 30; s++) th_assert_ok(tb_world_step(w, DT));
+    assert_int_equal(th_stats(w).steps, 30);
+    assert_non_null(strstr(tb_world_last_error(w), "contact callback"));
+    th_assert_ok(tb_world_unload_plugin(w, nested));
+    th_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -460,6 +476,7 @@ int main(void)
         cmocka_unit_test(test_logger_events_match_contacts),
         cmocka_unit_test(test_events_of_every_step_in_step_n),
         cmocka_unit_test(test_many_events_grow_the_buffer),
+        cmocka_unit_test(test_callbacks_cannot_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

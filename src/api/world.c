@@ -127,6 +127,9 @@ tb_solver_kind tb_world_get_solver(const tb_world* w, uint32_t* iterations)
 tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (w->in_callbacks)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "the world cannot be stepped from "
+                       "a plugin's contact callback, within its step");
     if (!isfinite(dt) || dt <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
                        (double)dt);

@@ -154,7 +154,10 @@ tb_result tb_events_deliver(tb_world* w, const tb_gpu_counters* counters)
                        &e->sorted[i]);
         tb_contact_events events = { (uint64_t)step + 1, e->begin.events, e->begin.count,
                                      e->end.events, e->end.count };
-        if (!r) tb_plugins_on_contacts(&w->plugins, &events);
+        if (r) break;
+        w->in_callbacks = 1;
+        tb_plugins_on_contacts(&w->plugins, &events);
+        w->in_callbacks = 0;
     }
     return r;
 }

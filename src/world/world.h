@@ -105,6 +105,7 @@ struct tb_world {
     float contact_hertz, contact_damping_ratio, contact_push_speed;
     uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
     uint64_t steps_redone;       ///< steps run again after a buffer grew
+    int in_callbacks;            ///< plugins' contact callbacks are running (within a step)
     tb_buffer params_buffer;
     tb_buffer params_swap;       ///< scratch through which a step swaps the manifold arrays
     tb_gpu_params params;
