@@ -119,6 +119,18 @@ typedef enum tb_broadphase {
 /// NULL for a value that names none.
 TB_API const char* tb_broadphase_name(tb_broadphase broadphase);
 
+/// What the API takes, at most: larger values are refused with a sentence and change
+/// nothing. Far beyond them float loses the digits a step needs, or products overflow, and
+/// a body turned into NaN a few steps later while every step returned TB_OK.
+#define TB_MAX_DT 1.0f              ///< s: dt of tb_world_step
+#define TB_MAX_GRAVITY 1000.0f      ///< m/s^2: |gravity| (about 100 g)
+#define TB_MAX_GRAVITY_SCALE 100.0f ///< |tb_body_def.gravity_scale|
+#define TB_MAX_SPEED 1000.0f        ///< m/s: |linear velocity| given to a body
+#define TB_MAX_SPIN 1000.0f         ///< rad/s: |angular velocity| given to a body
+#define TB_MAX_COORDINATE 1.0e6f    ///< m: each coordinate of a position, a plane's offset,
+                                    ///< a sphere's radius, a box's half extent
+#define TB_MAX_INERTIA_RATIO 1.0e6f ///< largest over smallest principal moment of a body
+
 typedef struct tb_world_def {
     /// Gravity acceleration, m/s^2. Default (0, -9.81, 0).
     tb_vec3 gravity;

@@ -258,6 +258,51 @@ static void test_bad_body_values(void** state)
                   TB_ERROR_INVALID_ARGUMENT);
 }
 
+/* Finite values beyond the documented limits (tumble.h, TB_MAX_*) are refused like NaN: they
+ * turned bodies into NaN a few steps later with every step TB_OK. At the limits, taken. */
+static void test_extreme_values(void** state)
+{
+    fixture* fx = *state;
+    tb_world* w = fx->w;
+    tb_body_id b = fx->ids[0];
+    const float huge = 3.0e38f;
+    tb_vec3 zero = th_v3(0, 0, 0);
+    EXPECT_REJECT(fx, tb_world_step(w, huge), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_world_step_n(w, TB_MAX_DT * 1.01f, 2), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_world_set_gravity(w, th_v3(0, -huge, 0)), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_world_set_gravity(w, th_v3(800, -800, 0)), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_body_set_velocity(w, b, th_v3(huge, 0, 0), zero),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_body_set_velocity(w, b, zero, th_v3(0, 0, TB_MAX_SPIN * 1.01f)),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_body_set_pose(w, b, th_v3(0, 2e6f, 0), th_q(0, 0, 0, 1)),
+                  TB_ERROR_INVALID_ARGUMENT);
+    tb_shape_def sd = tb_default_shape_def();
+    tb_shape_id out = tb_null_shape;
+    EXPECT_REJECT(fx, tb_shape_create_plane(w, &sd, th_v3(0, 1, 0), huge, &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_sphere(w, &sd, 2e6f, &out), TB_ERROR_INVALID_ARGUMENT);
+    EXPECT_REJECT(fx, tb_shape_create_box(w, &sd, th_v3(1, 2e6f, 1), &out),
+                  TB_ERROR_INVALID_ARGUMENT);
+    tb_body_def d = th_dynamic_def(fx->sphere, th_v3(0, 5, 0));
+    tb_body_id id;
+    tb_body_def bad[5] = { d, d, d, d, d };
+    bad[0].linear_velocity = th_v3(0, huge, 0);
+    bad[1].gravity_scale = huge;
+    bad[2].position = th_v3(-huge, 0, 0);
+    bad[3].inertia = th_v3(1e-12f, 1, 1);   /* flung a body to 1e13 m */
+    bad[4].angular_velocity = th_v3(huge, 0, 0);
+    for (int i = 0; i < 5; i++)
+        EXPECT_REJECT(fx, tb_body_create(w, &bad[i], &id), TB_ERROR_INVALID_ARGUMENT);
+    /* The limits themselves are taken. */
+    th_assert_ok(tb_world_set_gravity(w, th_v3(0, -TB_MAX_GRAVITY, 0)));
+    th_assert_ok(tb_body_set_velocity(w, b, th_v3(TB_MAX_SPEED, 0, 0), th_v3(0, TB_MAX_SPIN, 0)));
+    d.gravity_scale = -TB_MAX_GRAVITY_SCALE;
+    d.inertia = th_v3(1e-3f, 1e3f, 1e3f);
+    th_assert_ok(tb_body_create(w, &d, &id));
+    th_assert_ok(tb_world_step(w, TB_MAX_DT));
+}
+
 /* ---- shapes ----------------------------------------------------------------------------- */
 
 static void test_bad_shapes(void** state)
@@ -734,6 +779,7 @@ int main(void)
         T(test_bad_body_defs),
         T(test_quaternion_tolerance),
         T(test_bad_body_values),
+        T(test_extreme_values),
         T(test_bad_shapes),
         T(test_bad_step_and_gravity),
         cmocka_unit_test(test_world_create_errors),

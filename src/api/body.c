@@ -14,6 +14,13 @@ static tb_result check_numbers(tb_world* w, const tb_body_def* d, uint32_t i)
         !tb_finite3(d->angular_velocity))
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: position and velocities "
                        "must be finite", i);
+    if (!tb_coordinates_within(d->position, TB_MAX_COORDINATE) ||
+        !tb_within3(d->linear_velocity, TB_MAX_SPEED) ||
+        !tb_within3(d->angular_velocity, TB_MAX_SPIN))
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: position coordinates "
+                       "must be within TB_MAX_COORDINATE (%g m), speed within TB_MAX_SPEED (%g "
+                       "m/s), spin within TB_MAX_SPIN (%g rad/s)", i, (double)TB_MAX_COORDINATE,
+                       (double)TB_MAX_SPEED, (double)TB_MAX_SPIN);
     if (!isfinite(d->mass) || d->mass < 0)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: mass must be finite and "
                        ">= 0, not %g", i, (double)d->mass);
@@ -26,6 +33,10 @@ static tb_result check_numbers(tb_world* w, const tb_body_def* d, uint32_t i)
         !isfinite(d->angular_damping) || d->angular_damping < 0 || !isfinite(d->gravity_scale))
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: damping must be finite and "
                        ">= 0, gravity_scale finite", i);
+    if (fabsf(d->gravity_scale) > TB_MAX_GRAVITY_SCALE)
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: |gravity_scale| must be "
+                       "at most TB_MAX_GRAVITY_SCALE (%g), not %g", i,
+                       (double)TB_MAX_GRAVITY_SCALE, (double)d->gravity_scale);
     return TB_OK;
 }
 
@@ -50,8 +61,14 @@ static tb_result resolve_mass(tb_world* w, const tb_body_def* d, uint32_t i,
     tb_vec3 u = shape->unit_inertia;
     int given = d->inertia.x > 0;
     out->inertia = given ? d->inertia : (tb_vec3){ u.x * mass, u.y * mass, u.z * mass };
-    if (!tb_finite3(out->inertia) || !(out->inertia.x > 0 && out->inertia.y > 0 && out->inertia.z > 0))
+    tb_vec3 I = out->inertia;
+    if (!tb_finite3(I) || !(I.x > 0 && I.y > 0 && I.z > 0))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: inertia out of range", i);
+    float most = fmaxf(I.x, fmaxf(I.y, I.z)), least = fminf(I.x, fminf(I.y, I.z));
+    if (most > TB_MAX_INERTIA_RATIO * least)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body def %u: inertia (%g, %g, %g) "
+                       "has moments further apart than TB_MAX_INERTIA_RATIO (%g)", i, (double)I.x,
+                       (double)I.y, (double)I.z, (double)TB_MAX_INERTIA_RATIO);
     return TB_OK;
 }
 
@@ -118,6 +135,9 @@ tb_result tb_body_set_pose(tb_world* w, tb_body_id id, tb_vec3 p, tb_quat q)
     if (!b) return r;
     if (!tb_finite3(p))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "position must be finite");
+    if (!tb_coordinates_within(p, TB_MAX_COORDINATE))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "position coordinates must be "
+                       "within TB_MAX_COORDINATE (%g m)", (double)TB_MAX_COORDINATE);
     tb_quat unit;
     if ((r = tb_check_rotation(&w->diag, q, &unit, "tb_body_set_pose"))) return r;
     tb_bodies_set_pose(w, slot, p, unit);
@@ -137,6 +157,10 @@ tb_result tb_body_set_velocity(tb_world* w, tb_body_id id, tb_vec3 v, tb_vec3 av
     if (!b) return r;
     if (!tb_finite3(v) || !tb_finite3(av))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "velocity must be finite");
+    if (!tb_within3(v, TB_MAX_SPEED) || !tb_within3(av, TB_MAX_SPIN))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "speed must be within TB_MAX_SPEED "
+                       "(%g m/s), spin within TB_MAX_SPIN (%g rad/s)", (double)TB_MAX_SPEED,
+                       (double)TB_MAX_SPIN);
     if (b->type == TB_BODY_STATIC) return TB_OK;
     tb_bodies_set_velocity(w, slot, v, av);
     return TB_OK;

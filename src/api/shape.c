@@ -69,6 +69,10 @@ tb_result tb_shape_create_sphere(tb_world* w, const tb_shape_def* def, float rad
     if (!isfinite(radius) || radius <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "sphere radius must be finite and > 0, "
                        "not %g", (double)radius);
+    if (radius > TB_MAX_COORDINATE)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "sphere radius must be at most "
+                       "TB_MAX_COORDINATE (%g m), not %g", (double)TB_MAX_COORDINATE,
+                       (double)radius);
     double r2 = (double)radius * radius;
     tb_shape_record rec = { .type = TB_SHAPE_SPHERE, .material = *def,
                             .volume = (float)(4.0 / 3.0 * PI * r2 * radius) };
@@ -98,6 +102,10 @@ tb_result tb_shape_create_box(tb_world* w, const tb_shape_def* def, tb_vec3 h, t
     if (!tb_finite3(h) || h.x <= 0 || h.y <= 0 || h.z <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box half extents must be finite and "
                        "> 0, not (%g, %g, %g)", (double)h.x, (double)h.y, (double)h.z);
+    if (!tb_coordinates_within(h, TB_MAX_COORDINATE))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "box half extents must be at most "
+                       "TB_MAX_COORDINATE (%g m), not (%g, %g, %g)", (double)TB_MAX_COORDINATE,
+                       (double)h.x, (double)h.y, (double)h.z);
     double x2 = (double)h.x * h.x, y2 = (double)h.y * h.y, z2 = (double)h.z * h.z;
     tb_shape_record rec = { .type = TB_SHAPE_BOX, .material = *def,
                             .volume = (float)(8.0 * h.x * h.y * h.z) };
@@ -183,9 +191,10 @@ tb_result tb_shape_create_plane(tb_world* w, const tb_shape_def* def, tb_vec3 n,
     tb_result r = tb_api_check_shape_def(w, def, out);
     if (r) return r;
     double len = sqrt((double)n.x * n.x + (double)n.y * n.y + (double)n.z * n.z);
-    if (!tb_finite3(n) || !isfinite(offset) || !(len > 1e-12) || !isfinite(len))
+    if (!tb_finite3(n) || !isfinite(offset) || !(len > 1e-12) || !isfinite(len) ||
+        fabsf(offset) > TB_MAX_COORDINATE)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "plane needs a finite non-zero normal "
-                       "and a finite offset");
+                       "and an offset within TB_MAX_COORDINATE (%g m)", (double)TB_MAX_COORDINATE);
     tb_shape_record rec = { .type = TB_SHAPE_PLANE, .material = *def };
     const float big = (float)TB_UNBOUNDED_EXTENT;
     tb_gpu_shape gpu = tb_api_gpu_shape(TB_GPU_SHAPE_PLANE, (tb_vec3){ big, big, big },

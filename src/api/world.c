@@ -13,6 +13,9 @@ static tb_result check_world_def(tb_diag* diag, const tb_world_def* def)
                        "world def was not initialised with tb_default_world_def()");
     if (!tb_finite3(def->gravity))
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    if (!tb_within3(def->gravity, TB_MAX_GRAVITY))
+        return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "|gravity| must be at most "
+                       "TB_MAX_GRAVITY (%g m/s^2)", (double)TB_MAX_GRAVITY);
     if (!isfinite(def->max_rotation_per_step) || def->max_rotation_per_step <= 0)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "max_rotation_per_step must be finite "
                        "and > 0, not %g", (double)def->max_rotation_per_step);
@@ -95,6 +98,9 @@ tb_result tb_world_set_gravity(tb_world* w, tb_vec3 gravity)
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
     if (!tb_finite3(gravity))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "gravity must be finite");
+    if (!tb_within3(gravity, TB_MAX_GRAVITY))
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "|gravity| must be at most "
+                       "TB_MAX_GRAVITY (%g m/s^2)", (double)TB_MAX_GRAVITY);
     w->gravity = gravity;
     return TB_OK;
 }
@@ -133,6 +139,9 @@ tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
     if (!isfinite(dt) || dt <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
                        (double)dt);
+    if (dt > TB_MAX_DT)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be at most TB_MAX_DT (%g "
+                       "s), not %g", (double)TB_MAX_DT, (double)dt);
     return tb_world_run(w, dt, n);
 }
 

@@ -10,6 +10,17 @@ int tb_finite3(tb_vec3 v)
     return isfinite(v.x) && isfinite(v.y) && isfinite(v.z);
 }
 
+int tb_within3(tb_vec3 v, float limit)
+{
+    double x = v.x, y = v.y, z = v.z;
+    return tb_finite3(v) && x * x + y * y + z * z <= (double)limit * limit;
+}
+
+int tb_coordinates_within(tb_vec3 v, float limit)
+{
+    return tb_finite3(v) && fabsf(v.x) <= limit && fabsf(v.y) <= limit && fabsf(v.z) <= limit;
+}
+
 int tb_finite_quat(tb_quat q)
 {
     return isfinite(q.x) && isfinite(q.y) && isfinite(q.z) && isfinite(q.w);
