@@ -182,6 +182,28 @@ static void test_include_cycle_is_refused(void** state)
     edit("step/begin.comp", "#include \"cycle_a.glsl\"\nvoid main()", "void main()");
 }
 
+/* A shader in the directory that declares a buffer at a binding the world's set lacks is
+ * refused before the driver sees it (it crashed the driver, or ran against another buffer),
+ * and the built-in shader runs. */
+static void test_unknown_binding_is_refused(void** state)
+{
+    (void)state;
+    const char* bogus = "layout(set = 0, binding = 99, std430) buffer Bogus { uint bogus[]; };\n"
+                        "void main() { bogus[0] = 1u; }\nvoid main_of_begin()";
+    edit("step/begin.comp", "void main()", bogus);
+    setenv("TUMBLE_SHADER_DIR", shader_dir, 1);
+    tb_world* w = th_world_create_ex(NULL, 1);
+    unsetenv("TUMBLE_SHADER_DIR");
+    const char* warning = th_world_log(w)->last_warning;
+    assert_non_null(strstr(warning, "uses binding 99"));
+    assert_non_null(strstr(warning, "step/begin runs the built-in shader"));
+    tb_body_def def = th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 100, 0));
+    tb_body_id body = th_body(w, &def);
+    th_assert_near(fall_in_one_step(w, body), -9.81 * DT, 1e-4, 1e-3);
+    th_world_destroy(w);
+    edit("step/begin.comp", bogus, "void main()");
+}
+
 /* The blast plugin compiling blast.comp beside it, from a copy: with a shader directory
  * set, editing blast.comp turns the push into a pull. */
 static void test_plugin_glsl_is_watched(void** state)
@@ -237,6 +259,7 @@ int main(void)
         cmocka_unit_test(test_edits_take_effect_while_stepping),
         cmocka_unit_test(test_environment_and_broken_start),
         cmocka_unit_test(test_include_cycle_is_refused),
+        cmocka_unit_test(test_unknown_binding_is_refused),
         cmocka_unit_test(test_plugin_glsl_is_watched),
         cmocka_unit_test(test_bad_directory_is_refused),
     };

@@ -15,6 +15,11 @@
 typedef tb_result tb_spirv_check(tb_diag* diag, const char* what, const uint32_t* code,
                                  size_t size);
 
+/// The check every SPIR-V not built with the library gets (spirv_check.c): valid for Vulkan
+/// 1.2, a compute entry point "main", its resources in set 0 at the world's bindings.
+tb_result tb_spirv_check_module(tb_diag* diag, const char* what, const uint32_t* code,
+                                size_t size);
+
 /// A pipeline and where its code comes from.
 typedef struct tb_pipeline_source {
     VkPipeline pipeline;          ///< the one in use
@@ -22,7 +27,8 @@ typedef struct tb_pipeline_source {
     char* name;                   ///< the embedded shader ("integrate/substep"), or a stage's
     char* glsl_path;              ///< a plugin stage's GLSL file; NULL for an embedded shader
     uint32_t workgroup_size;
-    tb_spirv_check* check;        ///< run on a plugin stage's SPIR-V, or NULL
+    tb_spirv_check* check;        ///< run on a plugin stage's SPIR-V, or NULL (compiled from
+                                  ///< a shader directory, tb_spirv_check_module)
     uint64_t code_hash;           ///< of the SPIR-V in use
     char** files;                 ///< the files its GLSL in use was compiled from (canonical)
     uint32_t file_count;

@@ -114,7 +114,10 @@ static tb_result build_compiled(tb_pipelines* p, tb_pipeline_source* s, VkPipeli
     tb_spirv spirv;
     *out = VK_NULL_HANDLE;
     tb_result r = compile_source(p, s, &spirv);
-    if (!r && s->check) r = s->check(p->gpu->diag, s->name, spirv.code, spirv.size);
+    /* Compiled from files anyone may have written: checked before the driver sees it (a
+     * buffer at a binding the world's set lacks crashed the driver, or ran against another). */
+    tb_spirv_check* check = s->check ? s->check : tb_spirv_check_module;
+    if (!r) r = check(p->gpu->diag, s->name, spirv.code, spirv.size);
     uint64_t hash = r ? 0 : hash_code(spirv.code, spirv.size);
     if (!r && (!s->pipeline || hash != s->code_hash))
         r = tb_pipeline_create_from(p, s->name, spirv.code, spirv.size, s->workgroup_size, out);

@@ -119,10 +119,10 @@ static tb_result build_stage(tb_plugins* pl, const char* path, const tb_plugin_s
     if (!s->spirv) {
         char full[2 * PATH_MAX];
         stage_glsl_path(path, s->glsl_path, full, sizeof full);
-        return tb_pipeline_create_glsl(pl->host.kit.pipelines, rec->name, full, tb_plugin_check_spirv,
+        return tb_pipeline_create_glsl(pl->host.kit.pipelines, rec->name, full, tb_spirv_check_module,
                                        TB_WORKGROUP_SIZE, &rec->pipeline);
     }
-    tb_result r = tb_plugin_check_spirv(diag_of(pl), rec->name, s->spirv, s->spirv_size);
+    tb_result r = tb_spirv_check_module(diag_of(pl), rec->name, s->spirv, s->spirv_size);
     if (!r) r = tb_pipeline_create_from(pl->host.kit.pipelines, rec->name, s->spirv, s->spirv_size,
                                         TB_WORKGROUP_SIZE, &rec->pipeline);
     return r;

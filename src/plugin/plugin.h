@@ -81,9 +81,4 @@ int tb_plugins_want_events(const tb_plugins* p);
 /// One step's contact events to every plugin that wants them, in load order.
 void tb_plugins_on_contacts(const tb_plugins* p, const tb_contact_events* events);
 
-/* spirv.c */
-
-/// Check a stage's SPIR-V (`what` names it in the error).
-tb_result tb_plugin_check_spirv(tb_diag* diag, const char* what, const uint32_t* code, size_t size);
-
 #endif

@@ -1,9 +1,12 @@
-/* A plugin's SPIR-V is checked before Vulkan sees it: a module the driver or the validation
- * layer would reject (or crash on) is refused with a sentence instead. */
+/* SPIR-V that did not come from the build (a plugin's stage, a shader compiled from a shader
+ * directory) is checked before Vulkan sees it: a module the driver or the validation layer
+ * would reject (or crash on, or run against the wrong buffer) is refused with a sentence
+ * instead. */
 #include <spirv-tools/libspirv.h>
 #include <string.h>
 
-#include "plugin/plugin.h"
+#include "gpu/pipeline.h"
+#include "layout.h"
 
 #define SPIRV_MAGIC 0x07230203u
 #define OP_ENTRY_POINT 15u
@@ -41,8 +44,8 @@ static tb_result check_interface(tb_diag* diag, const char* what, const uint32_t
             has_main = 1;
         if (op == OP_DECORATE && length >= 4 && words[at + 2] == DECORATION_DESCRIPTOR_SET &&
             words[at + 3] != 0)
-            return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s uses descriptor set %u; plugin "
-                           "stages have set 0 only", what, words[at + 3]);
+            return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s uses descriptor set %u; "
+                           "Tumble's shaders have set 0 only", what, words[at + 3]);
         if (op == OP_DECORATE && length >= 4 && words[at + 2] == DECORATION_BINDING &&
             words[at + 3] >= TB_BIND_COUNT)
             return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s uses binding %u, which the world's "
@@ -55,7 +58,7 @@ static tb_result check_interface(tb_diag* diag, const char* what, const uint32_t
     return TB_OK;
 }
 
-tb_result tb_plugin_check_spirv(tb_diag* diag, const char* what, const uint32_t* code, size_t size)
+tb_result tb_spirv_check_module(tb_diag* diag, const char* what, const uint32_t* code, size_t size)
 {
     if (!code || size < 20 || size % 4 != 0)
         return tb_fail(diag, TB_ERROR_INVALID_ARGUMENT, "%s is not SPIR-V: %zu bytes is no "
