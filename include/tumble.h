@@ -129,7 +129,8 @@ TB_API const char* tb_broadphase_name(tb_broadphase broadphase);
 #define TB_MAX_SPIN 1000.0f         ///< rad/s: |angular velocity| given to a body
 #define TB_MAX_COORDINATE 1.0e6f    ///< m: each coordinate of a position, a plane's offset,
                                     ///< a sphere's radius, a box's half extent
-#define TB_MAX_INERTIA_RATIO 1.0e6f ///< largest over smallest principal moment of a body
+#define TB_MAX_INERTIA_RATIO 1.0e6f ///< largest over smallest principal moment given in a
+                                    ///< body def (a shape's own may be further apart)
 
 typedef struct tb_world_def {
     /// Gravity acceleration, m/s^2. Default (0, -9.81, 0).
