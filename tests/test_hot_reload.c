@@ -158,6 +158,22 @@ static void test_environment_and_broken_start(void** state)
     th_world_destroy(w);
 }
 
+/* A world made with TUMBLE_SHADER_DIR whose step/begin.comp in the copy is refused: the last
+ * warning says `why` and that step/begin runs built in, and a body falls as it should. */
+static void expect_begin_built_in(const char* why)
+{
+    setenv("TUMBLE_SHADER_DIR", shader_dir, 1);
+    tb_world* w = th_world_create_ex(NULL, 1);
+    unsetenv("TUMBLE_SHADER_DIR");
+    const char* warning = th_world_log(w)->last_warning;
+    assert_non_null(strstr(warning, why));
+    assert_non_null(strstr(warning, "step/begin runs the built-in shader"));
+    tb_body_def def = th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 100, 0));
+    tb_body_id body = th_body(w, &def);
+    th_assert_near(fall_in_one_step(w, body), -9.81 * DT, 1e-4, 1e-3);
+    th_world_destroy(w);
+}
+
 /* Shader files that include each other without guards are refused with a sentence (the
  * compiler recursed without end), and the built-in shader runs. */
 static void test_include_cycle_is_refused(void** state)
@@ -169,16 +185,7 @@ static void test_include_cycle_is_refused(void** state)
     snprintf(path, sizeof path, "%s/step/cycle_b.glsl", shader_dir);
     write_text(path, "#include \"cycle_a.glsl\"\n");
     edit("step/begin.comp", "void main()", "#include \"cycle_a.glsl\"\nvoid main()");
-    setenv("TUMBLE_SHADER_DIR", shader_dir, 1);
-    tb_world* w = th_world_create_ex(NULL, 1);
-    unsetenv("TUMBLE_SHADER_DIR");
-    const char* warning = th_world_log(w)->last_warning;
-    assert_non_null(strstr(warning, "include guards"));
-    assert_non_null(strstr(warning, "step/begin runs the built-in shader"));
-    tb_body_def def = th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 100, 0));
-    tb_body_id body = th_body(w, &def);
-    th_assert_near(fall_in_one_step(w, body), -9.81 * DT, 1e-4, 1e-3);
-    th_world_destroy(w);
+    expect_begin_built_in("include guards");
     edit("step/begin.comp", "#include \"cycle_a.glsl\"\nvoid main()", "void main()");
 }
 
@@ -191,16 +198,7 @@ static void test_unknown_binding_is_refused(void** state)
     const char* bogus = "layout(set = 0, binding = 99, std430) buffer Bogus { uint bogus[]; };\n"
                         "void main() { bogus[0] = 1u; }\nvoid main_of_begin()";
     edit("step/begin.comp", "void main()", bogus);
-    setenv("TUMBLE_SHADER_DIR", shader_dir, 1);
-    tb_world* w = th_world_create_ex(NULL, 1);
-    unsetenv("TUMBLE_SHADER_DIR");
-    const char* warning = th_world_log(w)->last_warning;
-    assert_non_null(strstr(warning, "uses binding 99"));
-    assert_non_null(strstr(warning, "step/begin runs the built-in shader"));
-    tb_body_def def = th_dynamic_def(th_sphere(w, 0.5f), th_v3(0, 100, 0));
-    tb_body_id body = th_body(w, &def);
-    th_assert_near(fall_in_one_step(w, body), -9.81 * DT, 1e-4, 1e-3);
-    th_world_destroy(w);
+    expect_begin_built_in("uses binding 99");
     edit("step/begin.comp", bogus, "void main()");
 }
 

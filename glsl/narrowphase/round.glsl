@@ -518,13 +518,14 @@ bool np_segments_normal(vec3 p1, vec3 q1, vec3 p2, vec3 q2, float ra, float rb, 
     return true;
 }
 
+// The supports GJK took in np_round_normal (0 where it did not run): round_points keeps them
+// in the manifold (axis.y), and round_cull groups the pair by them in the next step.
+uint np_round_supports = 0u;
+
 // Normal (A to B) and surface points of two convex shapes: in closed form for a sphere or
 // capsule against a capsule, else GJK on the cores and EPA where they overlap. False when
 // they are farther apart than the margin (or EPA found nothing); GJK gives up on a pair as
 // soon as a support plane shows that.
-// The supports GJK took in np_round_normal (0 where it did not run): round_points keeps them
-// in the manifold (axis.y), and round_cull groups the pair by them in the next step.
-uint np_round_supports = 0u;
 bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec3 n,
                      out vec3 pa, out vec3 pb)
 {
