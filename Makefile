@@ -56,7 +56,8 @@ TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/b
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
-                $(BUILD)/tests/plugins/count_events.so $(BUILD)/tests/plugins/nested_step.so
+                $(BUILD)/tests/plugins/count_events.so $(BUILD)/tests/plugins/nested_step.so \
+                $(BUILD)/tests/plugins/poison.so $(BUILD)/tests/plugins/poison.comp
 RENDER_SHADERS := $(sort $(wildcard tools/render/shaders/*.vert tools/render/shaders/*.frag tools/render/shaders/*.comp))
 RENDER_SPV     := $(RENDER_SHADERS:tools/render/shaders/%=$(BUILD)/render-spv/%.spv)
 RENDER_SRC     := $(sort $(wildcard tools/render/*.c)) $(BUILD)/render_shaders.c
@@ -281,6 +282,15 @@ $(BUILD)/tests/plugins/nested_step.so: tests/plugins/nested_step.c abi/tumble_pl
 	$(call say,LD,$@)
 	@mkdir -p $(dir $@)
 	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
+
+$(BUILD)/tests/plugins/poison.so: tests/plugins/poison.c abi/tumble_plugin.h
+	$(call say,LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(PLUGIN_CFLAGS) -o $@ $<
+
+$(BUILD)/tests/plugins/poison.comp: tests/plugins/poison.comp
+	@mkdir -p $(dir $@)
+	$(Q)cp $< $@
 
 $(BUILD)/tests/plugins/broken.comp: tests/plugins/broken.comp
 	@mkdir -p $(dir $@)

@@ -662,6 +662,16 @@ TB_API tb_result tb_world_read_contacts(tb_world* world, tb_contact* out, uint32
 /// Ids of live bodies in slot order; returns how many were written (at most `capacity`).
 TB_API uint32_t tb_world_body_ids(const tb_world* world, tb_body_id* out, uint32_t capacity);
 
+/// The guard: a dynamic body whose pose or velocity stops being finite in a step (a
+/// plugin's stage wrote NaN, or the solve broke down) is isolated by that step. It keeps the
+/// last finite pose it had, its velocities become zero, and it no longer moves or collides,
+/// so its NaN reaches no other body; a warning names it in the log, and setting its pose or
+/// velocity is refused. Destroy it to free its slot. Writes the ids of the live isolated
+/// bodies in slot order to `out` (at most `capacity`; NULL with capacity 0) and returns how
+/// many there are.
+TB_API uint32_t tb_world_isolated_bodies(const tb_world* world, tb_body_id* out,
+                                         uint32_t capacity);
+
 /* ---------------------------------------------------------------------------------------
  * Plugins (abi/tumble_plugin.h says what a plugin is and how it is built)
  */

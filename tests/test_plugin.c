@@ -464,6 +464,87 @@ static void test_callbacks_cannot_step(void** state)
     th_world_destroy(w);
 }
 
+static int pose_finite(tb_vec3 p, tb_quat q)
+{
+    return isfinite(p.x) && isfinite(p.y) && isfinite(p.z) && isfinite(q.x) && isfinite(q.y) &&
+           isfinite(q.z) && isfinite(q.w);
+}
+
+#define PILE 18   /* boxes: two layers of three by three */
+
+/* The guard: a box in the middle of a settled pile whose velocity a plugin turns into NaN
+ * is isolated by that step (reported, logged, its pose the last finite one, moving it
+ * refused), and the other boxes stay finite and slow for a second of steps after. */
+static void guard_isolates(const char* solver, int infinite)
+{
+    if (solver) setenv("TUMBLE_SOLVER", solver, 1);
+    tb_world* w = th_world_create_ex(NULL, 1);   /* the guard logs a warning */
+    unsetenv("TUMBLE_SOLVER");
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_id box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
+    tb_body_id ids[PILE];
+    for (int i = 0; i < PILE; i++) {
+        tb_body_def d = th_dynamic_def(box, th_v3(1.02f * (float)(i % 3 - 1), 0.5f + (float)(i / 9),
+                                                  1.02f * (float)(i / 3 % 3 - 1)));
+        ids[i] = th_body(w, &d);
+    }
+    tb_plugin_id poison;
+    th_assert_ok(tb_world_load_plugin(w, plugin_path("tests/plugins/poison.so"), &poison));
+    th_assert_ok(tb_world_step_n(w, DT, 30));
+    assert_int_equal(tb_world_isolated_bodies(w, NULL, 0), 0);
+    tb_body_id victim = ids[4];   /* the middle of the lower layer, under ids[13] */
+    tb_vec3 before;
+    tb_quat turn_before;
+    th_read_pose(w, victim, &before, &turn_before);
+    float armed[4] = { 1, (float)(victim.index1 - 1), (float)infinite, 0 }, off[4] = { 0 };
+    th_assert_ok(tb_world_set_plugin_param(w, poison, 0, armed, sizeof armed));
+    th_assert_ok(tb_world_step(w, DT));
+    th_assert_ok(tb_world_set_plugin_param(w, poison, 0, off, sizeof off));
+    tb_body_id found[2];
+    assert_int_equal(tb_world_isolated_bodies(w, found, 2), 1);
+    assert_true(found[0].index1 == victim.index1 && found[0].generation == victim.generation);
+    assert_non_null(strstr(th_world_log(w)->last_warning, "isolated"));
+    th_assert_ok(tb_world_step_n(w, DT, 60));
+    for (int i = 0; i < PILE; i++) {
+        tb_vec3 p, v, av;
+        tb_quat q;
+        th_read_pose(w, ids[i], &p, &q);
+        assert_true(pose_finite(p, q));
+        th_assert_ok(tb_body_get_velocity(w, ids[i], &v, &av));
+        if (i == 4) {
+            assert_true(p.x == before.x && p.y == before.y && p.z == before.z);
+            assert_true(q.x == turn_before.x && q.w == turn_before.w);
+            assert_true(v.x == 0 && v.y == 0 && v.z == 0);
+            continue;
+        }
+        assert_true(isfinite(v.x) && isfinite(v.y) && isfinite(v.z));
+        assert_true(sqrt(v.x * v.x + v.y * v.y + v.z * v.z) < 10.0);
+    }
+    th_assert_result(tb_body_set_velocity(w, victim, th_v3(0, 1, 0), th_v3(0, 0, 0)),
+                     TB_ERROR_INVALID_ARGUMENT);
+    assert_non_null(strstr(tb_world_last_error(w), "isolated"));
+    th_assert_ok(tb_body_destroy(w, victim));
+    assert_int_equal(tb_world_isolated_bodies(w, NULL, 0), 0);
+    th_assert_ok(tb_world_step(w, DT));
+    th_assert_ok(tb_world_unload_plugin(w, poison));
+    th_world_destroy(w);
+}
+
+static void test_guard_isolates_a_broken_body(void** state)
+{
+    (void)state;
+    guard_isolates(NULL, 0);
+    guard_isolates(NULL, 1);
+}
+
+static void test_guard_isolates_with_the_soft_step(void** state)
+{
+    (void)state;
+    guard_isolates("soft", 0);
+    guard_isolates("soft", 1);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -477,6 +558,8 @@ int main(void)
         cmocka_unit_test(test_events_of_every_step_in_step_n),
         cmocka_unit_test(test_many_events_grow_the_buffer),
         cmocka_unit_test(test_callbacks_cannot_step),
+        cmocka_unit_test(test_guard_isolates_a_broken_body),
+        cmocka_unit_test(test_guard_isolates_with_the_soft_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -267,6 +267,7 @@ void block_dual(uint p, uint k, block_point q, vec3 dpa, vec3 va, vec3 dpb, vec3
     if (on.x)
         stiffness = min(stiffness + params.block.y * q.unit * abs(C.x), params.block.z * q.unit);
     vec4 impulse = vec4(f * h, last ? f.x * h : stiffness);
+    if (!finite_all(impulse)) return;   // a body's state stopped being finite: keep the last
     if (last && stopped_impact(p, k, q)) impulse.x = 0.0;
     manifolds[p].impulse[k] = impulse;
     if (last) {

@@ -210,9 +210,14 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     mat3 S = e.D - Bt * Ai * e.B;
     vec3 y = inverse(S) * (e.ga - Bt * (Ai * e.gl));
     vec3 x = Ai * (e.gl - e.B * y);
+    // A step that is not finite (a neighbour's state, or the body's own, stopped being
+    // finite) is not taken: the body stays where it is, and integrate isolates whichever
+    // body is not finite at the end of the step.
+    bool finite = finite_all(x) && finite_all(y);
     float relax = over_relaxation();
-    my_dp = me.delta_position.xyz - relax * x;
-    vec4 my_dq = normalize(quat_mul(quat_of_rotation_vector(-relax * y), me.delta_rotation));
+    my_dp = finite ? me.delta_position.xyz - relax * x : me.delta_position.xyz;
+    vec4 turn = finite ? quat_of_rotation_vector(-relax * y) : vec4(0.0, 0.0, 0.0, 1.0);
+    vec4 my_dq = normalize(quat_mul(turn, me.delta_rotation));
     if (lane == 0u) {
         solver_bodies[i].delta_position.xyz = my_dp;
         solver_bodies[i].delta_rotation = my_dq;

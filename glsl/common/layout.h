@@ -141,6 +141,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                              one per triangle (midphase) */
 #define TB_BODY_FLAG_COMPOUND   TB_U(8)   /* its shape is a compound: its pairs are split into
                                              one per child (and triangle) */
+#define TB_BODY_FLAG_ISOLATED   TB_U(16)  /* its state stopped being finite in a step: the
+                                             step cleared ALIVE and DYNAMIC (integrate), so
+                                             nothing meets or moves it any more */
 
 /* tb_gpu_shape info.x; equal to tb_shape_type in tumble.h */
 #define TB_GPU_SHAPE_SPHERE     TB_U(0)
@@ -254,6 +257,8 @@ TB_STRUCT(tb_gpu_counters) {
     TB_UVEC4 hull_sat;        /* x the hull pairs narrowphase/contacts listed for
                                  narrowphase/hull_sat (in colour_work's second list), yzw
                                  unused */
+    TB_UVEC4 guard;           /* x bodies isolated since the world began (integrate: their
+                                 state stopped being finite; never cleared), yzw unused */
 };
 #define TB_COUNTERS_PAIR_DISPATCH_OFFSET 0
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)

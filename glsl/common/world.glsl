@@ -18,7 +18,13 @@ layout(set = 0, binding = TB_BIND_BODY_ROT, std430) buffer BodyRot { vec4 body_r
 layout(set = 0, binding = TB_BIND_BODY_LINVEL, std430) buffer BodyLinVel { vec4 body_linvel[]; };
 layout(set = 0, binding = TB_BIND_BODY_ANGVEL, std430) buffer BodyAngVel { vec4 body_angvel[]; };
 layout(set = 0, binding = TB_BIND_BODY_INV_INERTIA, std430) readonly buffer BodyInvInertia { vec4 body_inv_inertia[]; };
+// Read-only but where a kernel defines TB_BODY_INFO_WRITABLE first (integrate, which
+// isolates a body whose state stopped being finite).
+#ifdef TB_BODY_INFO_WRITABLE
+layout(set = 0, binding = TB_BIND_BODY_INFO, std430) buffer BodyInfo { uvec4 body_info[]; };
+#else
 layout(set = 0, binding = TB_BIND_BODY_INFO, std430) readonly buffer BodyInfo { uvec4 body_info[]; };
+#endif
 layout(set = 0, binding = TB_BIND_BODY_AABB_MIN, std430) buffer BodyAabbMin { vec4 body_aabb_min[]; };
 layout(set = 0, binding = TB_BIND_BODY_AABB_MAX, std430) buffer BodyAabbMax { vec4 body_aabb_max[]; };
 layout(set = 0, binding = TB_BIND_SHAPES, std430) readonly buffer Shapes { tb_gpu_shape shapes[]; };
@@ -103,6 +109,19 @@ uint current_half()
 uint pair_half_base()
 {
     return current_half() * params.capacity.x;
+}
+
+// Whether every component is finite, by its exponent bits: a compiler may take isnan and
+// isinf to be false (Vulkan does not promise NaNs are kept), never a bit test.
+bool finite_all(vec4 v)
+{
+    uvec4 exponent = floatBitsToUint(v) & 0x7f800000u;
+    return all(notEqual(exponent, uvec4(0x7f800000u)));
+}
+
+bool finite_all(vec3 v)
+{
+    return finite_all(vec4(v, 0.0));
 }
 
 bool body_is(uint i, uint flags)

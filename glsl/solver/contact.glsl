@@ -41,6 +41,14 @@ contact_view contact_load(uint p)
     return v;
 }
 
+// Whether both bodies' state is finite: a pair with a body whose state stopped being finite
+// is passed by, so its NaN reaches no neighbour; integrate then isolates that body.
+bool contact_finite(contact_view v)
+{
+    return finite_all(v.a.v) && finite_all(v.a.w) && finite_all(v.a.dp) &&
+           finite_all(v.b.v) && finite_all(v.b.w) && finite_all(v.b.dp);
+}
+
 void contact_store(contact_view v)
 {
     solver_body_store(v.bodies.x, v.a);
@@ -55,6 +63,7 @@ void contact_store(contact_view v)
 void warm_start_contact(uint p, uint substep)
 {
     contact_view v = contact_load(p);
+    if (!contact_finite(v)) return;
     for (uint k = 0u; k < v.count; k++) {
         vec4 impulse = manifolds[p].impulse[k];
         vec3 j = v.n * impulse.x + v.c.tangent1.xyz * impulse.y + v.c.tangent2.xyz * impulse.z;
@@ -98,6 +107,7 @@ float normal_increment(contact_view v, uint k, float vn, float accumulated, bool
 void solve_contact(uint p, bool relax)
 {
     contact_view v = contact_load(p);
+    if (!contact_finite(v)) return;
     vec3 t1 = v.c.tangent1.xyz, t2 = v.c.tangent2.xyz;
     float friction = v.c.tangent1.w;
     vec4 impulse[TB_MAX_MANIFOLD_POINTS];
@@ -138,6 +148,7 @@ void restitution_contact(uint p)
     float e = constraints[p].tangent2.w;
     if (e == 0.0) return;
     contact_view v = contact_load(p);
+    if (!contact_finite(v)) return;
     for (uint k = 0u; k < v.count; k++) {
         float before = min(v.c.p[k].mass.z, v.c.p[k].mass.w);
         vec4 impulse = manifolds[p].impulse[k];

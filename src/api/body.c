@@ -129,11 +129,24 @@ int tb_body_is_valid(const tb_world* w, tb_body_id id)
     return b->alive && b->generation == id.generation;
 }
 
+/* The record of a body the caller may move: live, and not isolated by the guard. */
+static tb_body_record* lookup_movable(tb_world* w, tb_body_id id, uint32_t* slot, tb_result* r)
+{
+    tb_body_record* b = tb_body_lookup(w, id, slot, r);
+    if (b && b->isolated) {
+        *r = tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "body {%u, %u, %u} is isolated: its "
+                     "state stopped being finite in a step, and it stays where it was until "
+                     "destroyed", id.index1, id.world, id.generation);
+        return NULL;
+    }
+    return b;
+}
+
 tb_result tb_body_set_pose(tb_world* w, tb_body_id id, tb_vec3 p, tb_quat q)
 {
     uint32_t slot;
     tb_result r;
-    tb_body_record* b = tb_body_lookup(w, id, &slot, &r);
+    tb_body_record* b = lookup_movable(w, id, &slot, &r);
     if (!b) return r;
     if (!tb_finite3(p))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "position must be finite");
@@ -155,7 +168,7 @@ tb_result tb_body_set_velocity(tb_world* w, tb_body_id id, tb_vec3 v, tb_vec3 av
 {
     uint32_t slot;
     tb_result r;
-    tb_body_record* b = tb_body_lookup(w, id, &slot, &r);
+    tb_body_record* b = lookup_movable(w, id, &slot, &r);
     if (!b) return r;
     if (!tb_finite3(v) || !tb_finite3(av))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "velocity must be finite");
@@ -181,7 +194,7 @@ tb_result tb_body_apply_impulse(tb_world* w, tb_body_id id, tb_vec3 impulse, tb_
 {
     uint32_t slot;
     tb_result r;
-    tb_body_record* b = tb_body_lookup(w, id, &slot, &r);
+    tb_body_record* b = lookup_movable(w, id, &slot, &r);
     if (!b) return r;
     if (!tb_finite3(impulse) || !tb_finite3(point))
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "impulse and point must be finite");
@@ -252,4 +265,9 @@ tb_result tb_world_read_aabbs(tb_world* w, const tb_body_id* ids, uint32_t count
 uint32_t tb_world_body_ids(const tb_world* w, tb_body_id* out, uint32_t capacity)
 {
     return w && out ? tb_bodies_ids(w, out, capacity) : 0;
+}
+
+uint32_t tb_world_isolated_bodies(const tb_world* w, tb_body_id* out, uint32_t capacity)
+{
+    return w ? tb_world_isolated(w, out, capacity) : 0;
 }

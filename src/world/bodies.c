@@ -102,6 +102,8 @@ void tb_bodies_remove(tb_world* w, uint32_t slot)
 {
     tb_body_record* b = &w->bodies[slot];
     b->alive = 0;
+    if (b->isolated) w->isolated_bodies--;
+    b->isolated = 0;
     w->shapes[b->shape].users--;
     tb_gpu_uvec4* info = (tb_gpu_uvec4*)tb_body_store_write(&w->store, TB_ARRAY_INFO, slot);
     *info = (tb_gpu_uvec4){ 0, 0, 0, 0 };

@@ -186,6 +186,7 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
     w->gpu_steps += *done;
     r = tb_events_deliver(w, c);
+    if (!r) r = tb_world_guard_check(w, c);
     if (!r && c->state.x) r = grow_for(w, c);
     else if (!r) {
         fit_colour_rounds(w, c);

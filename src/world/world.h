@@ -34,6 +34,7 @@ typedef struct tb_body_record {
     uint16_t generation;
     uint8_t alive;
     uint8_t type;           ///< tb_body_type
+    uint8_t isolated;       ///< its state stopped being finite in a step (guard.c)
     uint32_t shape;         ///< shape slot
     float mass;             ///< kg, 0 for static
     tb_vec3 inertia;        ///< principal moments, kg m^2
@@ -106,6 +107,8 @@ struct tb_world {
     uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
     uint64_t steps_redone;       ///< steps run again after a buffer grew
     int in_callbacks;            ///< plugins' contact callbacks are running (within a step)
+    uint32_t guard_seen;         ///< counters.guard.x the host has looked at (guard.c)
+    uint32_t isolated_bodies;    ///< live bodies the step isolated (guard.c)
     tb_buffer params_buffer;
     tb_buffer params_swap;       ///< scratch through which a step swaps the manifold arrays
     tb_gpu_params params;
@@ -241,6 +244,12 @@ tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uin
 /// Manifolds of the last step for interop: buffer, count, size.
 void tb_world_contact_buffer(const tb_world* w, VkBuffer* buffer, uint32_t* count,
                              VkDeviceSize* size);
+
+/* guard.c: bodies whose state stopped being finite (integrate isolates them on the GPU). */
+/// After a submission: find the bodies its steps isolated, mark their records and log them.
+tb_result tb_world_guard_check(tb_world* w, const tb_gpu_counters* c);
+/// Ids of the live isolated bodies in slot order (at most `capacity`); returns how many there are.
+uint32_t tb_world_isolated(const tb_world* w, tb_body_id* out, uint32_t capacity);
 
 /* stats.c */
 void tb_world_stats_read(const tb_world* w, tb_world_stats* out);

@@ -210,7 +210,7 @@ def test_destroy_bodies_and_shapes(make_world):
     world = make_world()
     ball = world.sphere(0.5)
     bodies = world.add_bodies(ball, np.arange(12, dtype=float).reshape(4, 3) * 2)
-    assert len(world.body_ids()) == 4
+    assert len(world.body_ids()) == 4 and len(world.isolated_bodies()) == 0
     world.destroy(bodies[1])
     assert world.is_valid(bodies).tolist() == [True, False, True, True]
     with pytest.raises(tumble.TumbleError, match=r"what\[1\].*nothing was destroyed") as caught:

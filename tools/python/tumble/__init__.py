@@ -836,6 +836,17 @@ class World:
             n = lib.tb_world_body_ids(w, ffi.from_buffer("tb_body_id[]", ids), len(ids))
         return Bodies(ids[:n])
 
+    def isolated_bodies(self):
+        """The bodies the step's guard isolated because their pose or velocity stopped being
+        finite (they keep their last finite pose and no longer move or collide), in slot
+        order, as Bodies."""
+        w = self._handle()
+        n = lib.tb_world_isolated_bodies(w, ffi.NULL, 0)
+        ids = np.zeros(n, dtype=BODY_ID)
+        if n:
+            n = min(n, lib.tb_world_isolated_bodies(w, ffi.from_buffer("tb_body_id[]", ids), n))
+        return Bodies(ids[:n])
+
     def shape_ids(self):
         """Every live shape of the world, in slot order, as a list of Shape."""
         w = self._handle()
