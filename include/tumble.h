@@ -256,6 +256,25 @@ TB_API tb_result tb_world_step(tb_world* world, float dt);
 /// n = 0 does nothing and returns TB_OK.
 TB_API tb_result tb_world_step_n(tb_world* world, float dt, uint32_t n);
 
+/// Snapshots, for rollback, resets and debugging: everything the world's next step depends
+/// on (bodies and their slots, last step's pairs and manifolds with their warm-start
+/// impulses, the step counters, gravity), as bytes of this library version and machine.
+/// tb_world_restore puts them back into the world they came from, or into another world
+/// made with the same def, solver and broadphase whose shapes were made alike and in the
+/// same order; it then continues bit for bit as the original did from the snapshot (with
+/// isap, where the world's body capacity differs from the snapshot's, the first step
+/// searches from scratch: the same pairs, perhaps in another order). Shapes and plugins
+/// are not in a snapshot. Ids of bodies made after the snapshot are stale after a restore
+/// (a later body may reuse such an id); user_data is restored as the pointer it was.
+/// tb_world_snapshot writes at most `capacity` bytes to `out` and the snapshot's size to
+/// *size; `out` NULL (capacity 0) asks for the size only. Fails with TB_ERROR_CAPACITY,
+/// writing the size, when it does not fit.
+TB_API tb_result tb_world_snapshot(tb_world* world, void* out, size_t capacity, size_t* size);
+/// Restore a snapshot (see tb_world_snapshot). Bytes that are not a whole snapshot of this
+/// build, damaged ones, and a world whose shapes, solver or broadphase differ are refused
+/// with a sentence, and nothing changes.
+TB_API tb_result tb_world_restore(tb_world* world, const void* snapshot, size_t size);
+
 typedef struct tb_device_info {
     char name[256];           ///< e.g. "NVIDIA H100 80GB HBM3", "llvmpipe (LLVM 15.0.6, 256 bits)"
     char driver[256];         ///< driver name and version text

@@ -150,6 +150,32 @@ tb_result tb_world_step(tb_world* w, float dt)
     return tb_world_step_n(w, dt, 1);
 }
 
+tb_result tb_world_snapshot(tb_world* w, void* out, size_t capacity, size_t* size)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!size)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_snapshot: size is NULL");
+    if (!out && capacity)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_snapshot: out is NULL "
+                       "with a capacity of %zu", capacity);
+    if (w->in_callbacks)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_snapshot cannot be "
+                       "called from a plugin's contact callback, within a step");
+    return tb_world_save(w, out, capacity, size);
+}
+
+tb_result tb_world_restore(tb_world* w, const void* snapshot, size_t size)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!snapshot)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_restore: snapshot is "
+                       "NULL");
+    if (w->in_callbacks)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_restore cannot be "
+                       "called from a plugin's contact callback, within a step");
+    return tb_world_load(w, snapshot, size);
+}
+
 tb_result tb_world_device_info(const tb_world* w, tb_device_info* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;

@@ -85,6 +85,11 @@ typedef struct tb_broadphase_ops {
     /// Its search starts from last step's pairs (isap): the midphase split keeps a body pair
     /// none of whose parts touch (pair_split.h), so the pair stays in that list.
     int reads_last_pairs;
+    /// The bytes of its own it keeps from one step for the next (the world's snapshots
+    /// carry them): the start of one of its buffers; NULL for none. sap's are its header;
+    /// isap's its whole state, sized by the body capacity: a snapshot restored where the
+    /// capacity differs starts isap afresh instead.
+    void (*kept)(const tb_broadphase_ctx* bp, VkBuffer* buffer, VkDeviceSize* bytes);
 } tb_broadphase_ops;
 
 extern const tb_broadphase_ops tb_broadphase_grid;

@@ -60,5 +60,5 @@ static tb_result grid_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broad
 }
 
 const tb_broadphase_ops tb_broadphase_grid = {
-    "grid", "broadphase/grid", grid_create, grid_reserve, grid_record, grid_destroy, 0,
+    "grid", "broadphase/grid", grid_create, grid_reserve, grid_record, grid_destroy, 0, NULL,
 };

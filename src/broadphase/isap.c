@@ -133,6 +133,14 @@ static tb_result isap_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broad
     return r;
 }
 
+/* The whole state buffer: its size follows the body capacity. */
+static void isap_kept(const tb_broadphase_ctx* bp, VkBuffer* buffer, VkDeviceSize* bytes)
+{
+    const tb_isap_state* s = bp->state;
+    *buffer = s->state.buffer;
+    *bytes = state_bytes(s->capacity);
+}
+
 const tb_broadphase_ops tb_broadphase_isap = {
-    "isap", "broadphase/isap", isap_create, isap_reserve, isap_record, isap_destroy, 1,
+    "isap", "broadphase/isap", isap_create, isap_reserve, isap_record, isap_destroy, 1, isap_kept,
 };

@@ -171,5 +171,5 @@ static void lbvh_destroy(tb_broadphase_ctx* bp)
 }
 
 const tb_broadphase_ops tb_broadphase_lbvh = {
-    "lbvh", "broadphase/lbvh", lbvh_create, lbvh_reserve, lbvh_record, lbvh_destroy, 0,
+    "lbvh", "broadphase/lbvh", lbvh_create, lbvh_reserve, lbvh_record, lbvh_destroy, 0, NULL,
 };

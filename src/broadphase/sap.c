@@ -113,6 +113,14 @@ static tb_result sap_record(tb_broadphase_ctx* bp, tb_pass_list* list, tb_broadp
     return r;
 }
 
+/* The header: the axis the last step chose for the next. */
+static void sap_kept(const tb_broadphase_ctx* bp, VkBuffer* buffer, VkDeviceSize* bytes)
+{
+    const sap_state* s = bp->state;
+    *buffer = s->buffers[TB_SAP_HEADER].buffer;
+    *bytes = sizeof(tb_gpu_sap_header);
+}
+
 const tb_broadphase_ops tb_broadphase_sap = {
-    "sap", "broadphase/sap", sap_create, sap_reserve, sap_record, sap_destroy, 0,
+    "sap", "broadphase/sap", sap_create, sap_reserve, sap_record, sap_destroy, 0, sap_kept,
 };

@@ -40,7 +40,7 @@ static float inverse(float x)
     return x > 0 ? 1.0f / x : 0.0f;
 }
 
-static tb_result grow_records(tb_world* w, uint32_t needed)
+tb_result tb_bodies_reserve_records(tb_world* w, uint32_t needed)
 {
     if (needed <= w->body_record_capacity) return TB_OK;
     uint32_t cap = w->body_record_capacity ? w->body_record_capacity : 64;
@@ -92,7 +92,7 @@ tb_result tb_bodies_add(tb_world* w, const tb_body_def* defs, const tb_body_reso
 {
     uint32_t fresh = count > w->body_slots.free_count ? count - w->body_slots.free_count : 0;
     uint32_t slots = w->body_slots.used + fresh;
-    tb_result r = grow_records(w, slots);
+    tb_result r = tb_bodies_reserve_records(w, slots);
     if (!r) r = tb_world_reserve_bodies(w, slots);
     for (uint32_t i = 0; i < count && !r; i++) out[i] = commit(w, &defs[i], &resolved[i]);
     return r;

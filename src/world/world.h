@@ -204,6 +204,8 @@ tb_body_id tb_body_id_of_slot(const tb_world* w, uint32_t slot);
 tb_result tb_bodies_add(tb_world* w, const tb_body_def* defs, const tb_body_resolved* resolved,
                         uint32_t count, tb_body_id* out);
 void tb_bodies_remove(tb_world* w, uint32_t slot);
+/// Host records for `needed` slots (new ones zeroed).
+tb_result tb_bodies_reserve_records(tb_world* w, uint32_t needed);
 void tb_bodies_set_pose(tb_world* w, uint32_t slot, tb_vec3 p, tb_quat unit);
 void tb_bodies_set_velocity(tb_world* w, uint32_t slot, tb_vec3 v, tb_vec3 av);
 tb_result tb_bodies_get_velocity(tb_world* w, uint32_t slot, tb_vec3* v, tb_vec3* av);
@@ -250,6 +252,12 @@ void tb_world_contact_buffer(const tb_world* w, VkBuffer* buffer, uint32_t* coun
 tb_result tb_world_guard_check(tb_world* w, const tb_gpu_counters* c);
 /// Ids of the live isolated bodies in slot order (at most `capacity`); returns how many there are.
 uint32_t tb_world_isolated(const tb_world* w, tb_body_id* out, uint32_t capacity);
+
+/* snapshot.c: the state the next step depends on, out to bytes and back. */
+/// Write the snapshot to out (NULL: only its size) and its size to *size.
+tb_result tb_world_save(tb_world* w, void* out, size_t capacity, size_t* size);
+/// Put a snapshot back, or refuse it with a sentence and change nothing.
+tb_result tb_world_load(tb_world* w, const void* data, size_t size);
 
 /* stats.c */
 void tb_world_stats_read(const tb_world* w, tb_world_stats* out);

@@ -403,3 +403,20 @@ def test_compound_with_capsule_children(make_world):
     cup = world.compound([(world.cylinder(0.3, 0.05), (0, 0, 0)),
                           (world.cone(0.2, 0.3), (0, 0.3, 0))])
     assert world.compound_info(cup)["child_count"] == 2
+
+
+def test_snapshot_and_restore(make_world):
+    world = make_world()
+    world.add_body(world.plane((0, 1, 0), 0), (0, 0, 0), static=True)
+    pile = world.add_bodies(world.box((0.5, 0.5, 0.5)), [(0, 0.5 + 1.2 * i, 0.1 * i) for i in range(4)])
+    world.step(n=10)
+    saved = world.snapshot()
+    world.step(n=30)
+    after = world.transforms(pile)[0].copy()
+    world.restore(saved)
+    world.step(n=30)
+    assert (world.transforms(pile)[0] == after).all()
+    with pytest.raises(tumble.TumbleError, match="checksum"):
+        world.restore(saved[:-1] + bytes([saved[-1] ^ 1]))
+    with pytest.raises(TypeError):
+        world.restore("not bytes")

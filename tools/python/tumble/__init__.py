@@ -945,6 +945,26 @@ class World:
         n = _count("n", n, "a non-negative integer (the number of steps)")
         self._check(lib.tb_world_step_n(self._handle(), dt, n))
 
+    def snapshot(self):
+        """The world's state as bytes (tb_world_snapshot): restore() puts it back, here or in
+        a world made alike (the same def, solver, broadphase and shapes, made in the same
+        order), and the world then continues bit for bit as it did from there."""
+        w = self._handle()
+        size = ffi.new("size_t*")
+        self._check(lib.tb_world_snapshot(w, ffi.NULL, 0, size))
+        out = bytearray(size[0])
+        self._check(lib.tb_world_snapshot(w, ffi.from_buffer(out), len(out), size))
+        return bytes(out)
+
+    def restore(self, snapshot):
+        """Put back a snapshot() (bytes-like); one that is damaged or from a world whose
+        shapes, solver or broadphase differ is refused and nothing changes."""
+        if not isinstance(snapshot, (bytes, bytearray, memoryview)):
+            raise TypeError("snapshot must be bytes from World.snapshot(), got %s"
+                            % type(snapshot).__name__)
+        data = bytes(snapshot)
+        self._check(lib.tb_world_restore(self._handle(), ffi.from_buffer(data), len(data)))
+
     def stats(self):
         """tb_world_stats as a dict of its field names (body_count, contact_count, steps,
         gpu_ms, validation_messages, ...); broadphase as its name, stages as a dict of
