@@ -52,7 +52,8 @@ TEST_SRC   := $(sort $(wildcard tests/test_*.c))
 TEST_CXX   := $(sort $(wildcard tests/test_*.cpp))
 TEST_BIN   := $(TEST_SRC:tests/%.c=$(BUILD)/tests/%) $(TEST_CXX:tests/%.cpp=$(BUILD)/tests/%)
 CXX        ?= g++
-TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/bench-distance
+TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/bench-distance \
+              $(BUILD)/bench-soak
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
 REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
@@ -228,6 +229,11 @@ $(BUILD)/bench-prims: tools/bench/prims.c $(BUILD)/libtumble.a
 $(BUILD)/bench-distance: tools/bench/distance.c tests/convex_reference.h $(BUILD)/libtumble.a
 	$(call say,LD,$@)
 	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/bench/distance.c $(BUILD)/libtumble.a $(LIBS) -lm
+
+# A long run reporting NaN, energy and memory at intervals.
+$(BUILD)/bench-soak: tools/bench/soak.c $(TOOL_DEPS)
+	$(call say,LD,$@)
+	$(Q)$(CC) $(TOOL_CFLAGS) -o $@ tools/bench/soak.c $(TOOL_LINK)
 
 $(BUILD)/tumble-run: tools/run/run.c $(TOOL_DEPS)
 	$(call say,LD,$@)

@@ -1,0 +1,180 @@
+/* bench-soak: a long run of one scene, reporting at intervals what must not drift.
+ *
+ *   build/bench-soak [--scene NAME] [--n N] [--steps TOTAL] [--every K] [--device NAME]
+ *
+ * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
+ * interval, bodies whose pose or velocity is not finite, bodies the guard isolated, the
+ * kinetic and potential energy of the dynamic bodies (J; potential against gravity from
+ * y = 0), the fastest body, the process's resident memory and the GPU buffers' capacities
+ * and growths. At the end: whether anything stopped being finite, how much the total energy
+ * moved over the second half of the run, and how much the resident memory grew after the
+ * first interval. Exits 1 when a body stopped being finite or a step failed. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "scenes.h"
+
+typedef struct options {
+    const char* scene;
+    uint32_t n, every;
+    uint64_t steps;
+} options;
+
+typedef struct sample {
+    uint32_t non_finite, isolated;
+    double kinetic, potential, fastest;
+} sample;
+
+static double now_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+static double resident_mb(void)
+{
+    FILE* f = fopen("/proc/self/statm", "r");
+    long pages = 0, resident = 0;
+    if (f) {
+        if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+        fclose(f);
+    }
+    return (double)resident * (double)sysconf(_SC_PAGESIZE) / 1048576.0;
+}
+
+static int finite3(tb_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+/* The figures of every body in ids. */
+static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* out)
+{
+    memset(out, 0, sizeof *out);
+    tb_vec3 g = tb_world_get_gravity(w);
+    for (uint32_t i = 0; i < count; i++) {
+        tb_vec3 p, v, av, inertia;
+        tb_quat q;
+        float mass;
+        if (tb_body_get_pose(w, ids[i], &p, &q) || tb_body_get_velocity(w, ids[i], &v, &av) ||
+            tb_body_get_mass(w, ids[i], &mass, &inertia))
+            return 1;
+        if (!finite3(p) || !finite3(v) || !finite3(av) || !isfinite(q.w)) {
+            out->non_finite++;
+            continue;
+        }
+        double speed = sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z);
+        if (speed > out->fastest) out->fastest = speed;
+        /* Spin energy in the body frame would need its rotation; the world-frame moments
+         * of a body's principal axes: 1/2 w^T R I R^T w. */
+        double r[3][3] = {
+            { 1 - 2 * (q.y * q.y + q.z * q.z), 2 * (q.x * q.y - q.z * q.w), 2 * (q.x * q.z + q.y * q.w) },
+            { 2 * (q.x * q.y + q.z * q.w), 1 - 2 * (q.x * q.x + q.z * q.z), 2 * (q.y * q.z - q.x * q.w) },
+            { 2 * (q.x * q.z - q.y * q.w), 2 * (q.y * q.z + q.x * q.w), 1 - 2 * (q.x * q.x + q.y * q.y) } };
+        double local[3] = { 0, 0, 0 }, moments[3] = { inertia.x, inertia.y, inertia.z };
+        double wv[3] = { av.x, av.y, av.z };
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++) local[a] += r[b][a] * wv[b];
+        double spin = 0;
+        for (int a = 0; a < 3; a++) spin += moments[a] * local[a] * local[a];
+        out->kinetic += 0.5 * mass * speed * speed + 0.5 * spin;
+        out->potential -= mass * ((double)g.x * p.x + (double)g.y * p.y + (double)g.z * p.z);
+    }
+    out->isolated = tb_world_isolated_bodies(w, NULL, 0);
+    return 0;
+}
+
+static int parse(int argc, char** argv, options* o)
+{
+    *o = (options){ "boxes", 1000, 1, 1000000 };
+    o->every = 10000;
+    for (int i = 1; i < argc; i++) {
+        const char* a = argv[i];
+        const char* v = i + 1 < argc ? argv[i + 1] : NULL;
+        uint32_t u = 0;
+        if (strcmp(a, "--scene") == 0 && v) o->scene = v;
+        else if (strcmp(a, "--device") == 0 && v) setenv("TUMBLE_DEVICE", v, 1);
+        else if (strcmp(a, "--n") == 0 && v && scene_parse_u32(v, &u) && u) o->n = u;
+        else if (strcmp(a, "--every") == 0 && v && scene_parse_u32(v, &u) && u) o->every = u;
+        else if (strcmp(a, "--steps") == 0 && v && scene_parse_u32(v, &u) && u) o->steps = u;
+        else {
+            fprintf(stderr, "usage: bench-soak [--scene NAME] [--n N] [--steps TOTAL] "
+                            "[--every K] [--device NAME]\n");
+            return 1;
+        }
+        i++;
+    }
+    return 0;
+}
+
+int main(int argc, char** argv)
+{
+    options o;
+    if (parse(argc, argv, &o)) return 2;
+    const scene* sc = scene_find(o.scene);
+    if (!sc) {
+        fprintf(stderr, "bench-soak: no scene %s\n", o.scene);
+        return 2;
+    }
+    tb_world_def def = tb_default_world_def();
+    tb_world* w = NULL;
+    scene_instance* inst = NULL;
+    scene_params params = { o.n, 1 };
+    if (tb_world_create(&def, &w) || sc->build(w, &params, &inst)) {
+        fprintf(stderr, "bench-soak: %s\n", tb_world_last_error(w));
+        return 2;
+    }
+    uint32_t count = 0;
+    const tb_body_id* all = scene_body_ids(inst, &count);
+    tb_body_id* ids = malloc(count * sizeof *ids);
+    uint32_t dynamic = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        tb_body_type type;
+        if (!tb_body_get_type(w, all[i], &type) && type == TB_BODY_DYNAMIC) ids[dynamic++] = all[i];
+    }
+    tb_device_info info;
+    tb_world_device_info(w, &info);
+    printf("bench-soak: scene %s, %u dynamic bodies, %llu steps of %g s, a line every %u, on %s\n",
+           sc->name, dynamic, (unsigned long long)o.steps, (double)sc->dt, o.every, info.name);
+    printf("%10s %8s %6s %6s %14s %14s %10s %8s %9s %9s %7s\n", "steps", "ms/step", "nan",
+           "isol", "kinetic J", "potential J", "fastest", "RSS MB", "bodies", "pairs", "grown");
+    double first_rss = 0, mid_energy = 0, last_energy = 0;
+    int bad = 0;
+    for (uint64_t done = 0; done < o.steps && !bad;) {
+        uint32_t k = o.steps - done < o.every ? (uint32_t)(o.steps - done) : o.every;
+        double t0 = now_ms();
+        tb_result r = tb_world_step_n(w, sc->dt, k);
+        double ms = (now_ms() - t0) / k;
+        done += k;
+        sample s;
+        tb_world_stats st;
+        if (r || measure(w, ids, dynamic, &s) || tb_world_get_stats(w, &st)) {
+            fprintf(stderr, "bench-soak: %s\n", tb_world_last_error(w));
+            bad = 1;
+            break;
+        }
+        double rss = resident_mb();
+        if (first_rss == 0) first_rss = rss;
+        double energy = s.kinetic + s.potential;
+        if (done <= o.steps / 2 || mid_energy == 0) mid_energy = energy;
+        last_energy = energy;
+        printf("%10llu %8.3f %6u %6u %14.2f %14.2f %10.4f %8.1f %9u %9u %7llu\n",
+               (unsigned long long)done, ms, s.non_finite, s.isolated, s.kinetic, s.potential,
+               s.fastest, rss, st.body_capacity, st.pair_capacity,
+               (unsigned long long)st.buffer_growths);
+        fflush(stdout);
+        if (s.non_finite) bad = 1;
+    }
+    printf("summary: %s; total energy over the second half %+.3f J (%.4f %% of its size); "
+           "resident memory after the first interval %+.1f MB\n",
+           bad ? "FAILED (a body stopped being finite or a step failed)" : "every body finite",
+           last_energy - mid_energy,
+           mid_energy != 0 ? 100.0 * (last_energy - mid_energy) / fabs(mid_energy) : 0.0,
+           resident_mb() - first_rss);
+    sc->destroy(inst);
+    tb_world_destroy(w);
+    free(ids);
+    return bad;
+}
