@@ -252,9 +252,8 @@ static void crowd_after(uint32_t n, uint32_t steps, tb_vec3* at, tb_world_stats*
  * tail). Every ball is pushed out in the first step (measured: the slowest leaves at 1.06
  * m/s; a ball the tail left unsolved stays at rest, and before the tail the step was
  * refused), they end apart, and the run repeats bit for bit. */
-static void test_crowd_beyond_the_colours(void** state)
+static void crowd_beyond_the_colours(void)
 {
-    (void)state;
     enum { N = 100 };
     tb_vec3 at[2][N];
     tb_world_stats stats;
@@ -275,6 +274,22 @@ static void test_crowd_beyond_the_colours(void** state)
     assert_true(slowest > 0.1);
     assert_true(deepest < 0.01);
     assert_memory_equal(at[0], at[1], sizeof at[0]);
+}
+
+static void test_crowd_beyond_the_colours(void** state)
+{
+    (void)state;
+    crowd_beyond_the_colours();
+}
+
+/* The same with the GPU's tail kernel (block/solve_tail: a workgroup's invocations share
+ * each body, their sums added in a fixed order), which lavapipe takes only when asked. */
+static void test_crowd_with_the_wide_tail(void** state)
+{
+    (void)state;
+    setenv("TUMBLE_WIDE_TAIL", "1", 1);
+    crowd_beyond_the_colours();
+    unsetenv("TUMBLE_WIDE_TAIL");
 }
 
 /* The sweeps' lanes a body (8, 16, 32) follow the bodies and their contact points, with a
@@ -364,6 +379,7 @@ int main(void)
         cmocka_unit_test(test_head_on_bounce_trades_velocities),
         cmocka_unit_test(test_impact_is_not_carried),
         cmocka_unit_test(test_crowd_beyond_the_colours),
+        cmocka_unit_test(test_crowd_with_the_wide_tail),
         cmocka_unit_test(test_lanes_choice),
         cmocka_unit_test(test_solver_choice),
     };

@@ -186,6 +186,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_PAIR_KIND_CONVEX     TB_U(241)
 /* Threads per workgroup of solver/solve: colour_finish writes counters.colour_dispatch for it. */
 #define TB_SOLVER_WORKGROUP_SIZE 64
+#define TB_BLOCK_TAIL_WORKGROUP_SIZE 256   /* block/solve_tail: one workgroup, all of it a body */
 /* Indirect dispatch arguments the GPU writes keep workgroups in x within Vulkan's guaranteed
  * maxComputeWorkGroupCount[0]; more get rows in y (index = (group.y * num_groups.x +
  * group.x) * size + local). */

@@ -39,6 +39,16 @@ tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines)
 {
     memset(s, 0, sizeof *s);
     tb_result r = tb_pipeline_create_slots(pipelines, kernels, KERNEL_COUNT, s);
+    /* The tail's workgroup shares each body on a GPU. A CPU device runs a workgroup's
+     * invocations on one core, where each lane and barrier costs: lavapipe keeps the
+     * sweep's own tail, one lane a body (500 spheres in one place: 1.8 s a step; 8.1 with
+     * 256 invocations a body, 2.5 with one). TUMBLE_WIDE_TAIL=1 takes the GPU's kernel
+     * there too (the tests run it so). */
+    const char* wide = getenv("TUMBLE_WIDE_TAIL");
+    if (!pipelines->gpu->is_cpu || (wide && strcmp(wide, "1") == 0))
+        r = r ? r : tb_pipeline_create(pipelines, "block/solve_tail", pipelines->gpu->is_cpu
+                                       ? TB_SOLVER_WORKGROUP_SIZE : TB_BLOCK_TAIL_WORKGROUP_SIZE,
+                                       &s->solve_tail);
     if (!r) s->pipelines = pipelines;
     return r;
 }
@@ -47,6 +57,7 @@ void tb_block_destroy(tb_block_solver* s)
 {
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
+    if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
     memset(s, 0, sizeof *s);
 }
 
@@ -149,10 +160,11 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 }
 
 /* One pass of `pipeline` over each colour's bodies (its dispatch covers the sweep's lanes
- * a body), with push args (colour, y, z); with all TB_MAX_COLOURS, then one workgroup over
- * the tail (colour TB_MAX_COLOURS), which returns at once when the tail is empty. */
+ * a body), with push args (colour, y, z); with all TB_MAX_COLOURS, then one workgroup of
+ * `tail` over the tail (colour TB_MAX_COLOURS), which returns at once when it is empty. */
 static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                              VkPipeline pipeline, uint32_t colours, uint32_t y, uint32_t z)
+                              VkPipeline pipeline, VkPipeline tail_pipeline, uint32_t colours,
+                              uint32_t y, uint32_t z)
 {
     tb_result r = TB_OK;
     for (uint32_t c = 0; c < colours && !r; c++) {
@@ -163,7 +175,7 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
         r = tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
     }
     if (!r && colours == TB_MAX_COLOURS) {
-        tb_pass tail = tb_pass_with_args(pipeline, TB_DISPATCH_FIXED, counters, 0,
+        tb_pass tail = tb_pass_with_args(tail_pipeline, TB_DISPATCH_FIXED, counters, 0,
                                          TB_MAX_COLOURS, y, z);
         tail.writes_no_arguments = 1;
         r = tb_pass_list_add(list, s->pipelines->gpu->diag, &tail);
@@ -182,8 +194,10 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = over_colours(s, list, counters, sweep, colours, it + 1 == iterations, relax);
+        r = over_colours(s, list, counters, sweep, s->solve_tail ? s->solve_tail : sweep,
+                         colours, it + 1 == iterations, relax);
     if (!r) r = per_body(s, list, s->end, counters, 0);
-    if (!r && restitution) r = over_colours(s, list, counters, s->bounce, colours, 0, 0);
+    if (!r && restitution)
+        r = over_colours(s, list, counters, s->bounce, s->bounce, colours, 0, 0);
     return r;
 }

@@ -33,6 +33,8 @@ typedef struct tb_block_solver {
     tb_pipelines* pipelines;
     VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, end, bounce;
     VkPipeline solve, solve_16, solve_32;   ///< the sweep with 8, 16 and 32 lanes a body
+    VkPipeline solve_tail;                  ///< the sweep over the tail, a workgroup a body
+                                            ///< (GPUs; NULL: the sweep's own tail)
 } tb_block_solver;
 
 /// What building the contact lists needs: the list starts (uint per body slot, scanned in
