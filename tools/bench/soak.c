@@ -3,8 +3,8 @@
  *   build/bench-soak [--scene NAME] [--n N] [--steps TOTAL] [--every K] [--device NAME]
  *
  * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
- * interval, bodies whose pose or velocity is not finite, bodies the guard isolated, the
- * kinetic and potential energy of the dynamic bodies (J; potential against gravity from
+ * interval, the GPU ms of its last step, bodies whose pose or velocity is not finite,
+ * bodies the guard isolated, the kinetic and potential energy of the dynamic bodies (J; potential against gravity from
  * y = 0), the fastest body, the process's resident memory and the GPU buffers' capacities
  * and growths. At the end: whether anything stopped being finite, how much the total energy
  * moved over the second half of the run, and how much the resident memory grew after the
@@ -138,8 +138,9 @@ int main(int argc, char** argv)
     tb_world_device_info(w, &info);
     printf("bench-soak: scene %s, %u dynamic bodies, %llu steps of %g s, a line every %u, on %s\n",
            sc->name, dynamic, (unsigned long long)o.steps, (double)sc->dt, o.every, info.name);
-    printf("%10s %8s %6s %6s %14s %14s %10s %8s %9s %9s %7s\n", "steps", "ms/step", "nan",
-           "isol", "kinetic J", "potential J", "fastest", "RSS MB", "bodies", "pairs", "grown");
+    printf("%10s %8s %7s %6s %6s %14s %14s %10s %8s %8s %8s %7s %9s %9s %7s\n", "steps",
+           "ms/step", "gpu ms", "nan", "isol", "kinetic J", "potential J", "fastest", "RSS MB",
+           "pairs", "points", "colours", "bodies", "pair cap", "grown");
     double first_rss = 0, mid_energy = 0, last_energy = 0;
     int bad = 0;
     for (uint64_t done = 0; done < o.steps && !bad;) {
@@ -160,10 +161,10 @@ int main(int argc, char** argv)
         double energy = s.kinetic + s.potential;
         if (done <= o.steps / 2 || mid_energy == 0) mid_energy = energy;
         last_energy = energy;
-        printf("%10llu %8.3f %6u %6u %14.2f %14.2f %10.4f %8.1f %9u %9u %7llu\n",
-               (unsigned long long)done, ms, s.non_finite, s.isolated, s.kinetic, s.potential,
-               s.fastest, rss, st.body_capacity, st.pair_capacity,
-               (unsigned long long)st.buffer_growths);
+        printf("%10llu %8.3f %7.3f %6u %6u %14.2f %14.2f %10.4f %8.1f %8u %8u %7u %9u %9u %7llu\n",
+               (unsigned long long)done, ms, st.gpu_ms, s.non_finite, s.isolated, s.kinetic,
+               s.potential, s.fastest, rss, st.pair_count, st.contact_count, st.colour_count,
+               st.body_capacity, st.pair_capacity, (unsigned long long)st.buffer_growths);
         fflush(stdout);
         if (s.non_finite) bad = 1;
     }
