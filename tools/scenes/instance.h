@@ -76,6 +76,11 @@ tb_result mixed_build(tb_world* world, const scene_params* params, scene_instanc
 tb_result pile_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                      scene_checks* out);
 
+/* crowd.c */
+tb_result crowd_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result crowd_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                      scene_checks* out);
+
 /* deep.c */
 tb_result deep_build(tb_world* world, const scene_params* params, scene_instance** out);
 tb_result deep_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,

@@ -258,6 +258,9 @@ static const scene scenes[] = {
                 "boxes and hulls (an eighth each) at random rotations dropped into a walled "
                 "box; checks nan, escaped, resting, max_penetration", 1.0f / 60.0f, 10000, 600,
       shapes_build, pile_check, instance_free },
+    { "crowd", "N spheres created at one point, every one touching every other: the worst "
+               "case of pairs, colours and growth; checks nan, slowest, max_penetration",
+      1.0f / 60.0f, 2000, 3, crowd_build, crowd_check, instance_free },
     { "terrain", "N boxes and hulls (half each) dropped in 4 layers onto a bowl of rolling "
                  "hills, a static triangle mesh of 131,072 triangles; checks nan, escaped "
                  "(through or off it), resting, max_penetration", 1.0f / 60.0f, 10000, 600,
