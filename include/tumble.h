@@ -209,7 +209,8 @@ TB_API tb_world_def tb_default_world_def(void);
 /// tb_world_last_error(NULL) says why.
 TB_API tb_result tb_world_create(const tb_world_def* def, tb_world** out);
 
-/// Destroy the world and everything in it. NULL is ignored.
+/// Destroy the world and everything in it. NULL is ignored. From a plugin's contact
+/// callback (within a step) the call is refused: an error is logged and the world kept.
 TB_API void tb_world_destroy(tb_world* world);
 
 /// Last error message for this world, or, with NULL, of the last failed tb_world_create
@@ -632,6 +633,7 @@ TB_API int tb_body_is_valid(const tb_world* world, tb_body_id body);
 
 TB_API tb_result tb_body_set_pose(tb_world* world, tb_body_id body, tb_vec3 position,
                                   tb_quat rotation);
+/// Either output may be NULL (as in tb_body_get_velocity and tb_body_get_mass).
 TB_API tb_result tb_body_get_pose(tb_world* world, tb_body_id body, tb_vec3* position,
                                   tb_quat* rotation);
 TB_API tb_result tb_body_set_velocity(tb_world* world, tb_body_id body, tb_vec3 linear,

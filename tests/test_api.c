@@ -606,6 +606,8 @@ static void test_null_outputs(void** state)
     expect_null_out(fx, tb_world_vulkan_device(fx->w, NULL), "tb_world_vulkan_device");
     expect_null_out(fx, tb_world_vulkan_bodies(fx->w, NULL), "tb_world_vulkan_bodies");
     expect_null_out(fx, tb_world_vulkan_contacts(fx->w, NULL), "tb_world_vulkan_contacts");
+    expect_null_out(fx, tb_body_get_type(fx->w, fx->ids[0], NULL), "tb_body_get_type");
+    expect_null_out(fx, tb_shape_get_type(fx->w, fx->sphere, NULL), "tb_shape_get_type");
     /* No room, no writes: a NULL array with capacity 0 only counts. */
     th_assert_ok(tb_world_read_contacts(fx->w, NULL, 0, &count));
     assert_int_equal(tb_world_body_ids(fx->w, NULL, 8), 0);

@@ -448,8 +448,9 @@ static void test_many_events_grow_the_buffer(void** state)
     th_world_destroy(w);
 }
 
-/* A contact callback that steps its world is refused (the ABI forbids it), and only the
- * outer steps are taken. */
+/* A contact callback that steps its world or destroys it is refused (the ABI forbids
+ * both; the destroyed world was freed under the step), and only the outer steps are
+ * taken. */
 static void test_callbacks_cannot_step(void** state)
 {
     (void)state;

@@ -220,8 +220,10 @@ tb_result tb_body_get_type(const tb_world* cw, tb_body_id id, tb_body_type* out)
     uint32_t slot;
     tb_result r;
     tb_body_record* b = tb_body_lookup(w, id, &slot, &r);
-    if (b && out) *out = (tb_body_type)b->type;
-    return r;
+    if (!b) return r;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_body_get_type: out is NULL");
+    *out = (tb_body_type)b->type;
+    return TB_OK;
 }
 
 void* tb_body_get_user_data(const tb_world* cw, tb_body_id id)

@@ -240,8 +240,10 @@ tb_result tb_shape_get_type(const tb_world* cw, tb_shape_id id, tb_shape_type* o
     uint32_t slot;
     tb_result r;
     tb_shape_record* s = tb_shape_lookup(w, id, &slot, &r);
-    if (s && out) *out = s->type;
-    return r;
+    if (!s) return r;
+    if (!out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_shape_get_type: out is NULL");
+    *out = s->type;
+    return TB_OK;
 }
 
 /* The record of a shape of the given type, or an error naming what the id is instead. */

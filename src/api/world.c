@@ -64,6 +64,12 @@ tb_result tb_world_create(const tb_world_def* def, tb_world** out)
 
 void tb_world_destroy(tb_world* w)
 {
+    /* Within a step (a plugin's contact callback) the library is still using the world. */
+    if (w && w->in_callbacks) {
+        tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_destroy cannot be called from "
+                "a plugin's contact callback, within a step: the world was kept");
+        return;
+    }
     tb_world_free(w);
 }
 

@@ -1,5 +1,6 @@
-/* A plugin whose contact callback tries to step its world, which the plugin ABI forbids
- * (tests/test_plugin.c): the library refuses the nested step and the outer one goes on. */
+/* A plugin whose contact callback tries to step its world and to destroy it, which the
+ * plugin ABI forbids (tests/test_plugin.c): the library refuses both and the outer step
+ * goes on. */
 #include "tumble_plugin.h"
 
 static void on_contacts(tb_world* world, void* user, const tb_contact_events* events)
@@ -7,6 +8,7 @@ static void on_contacts(tb_world* world, void* user, const tb_contact_events* ev
     (void)user;
     (void)events;
     tb_world_step(world, 1.0f / 60.0f);
+    tb_world_destroy(world);
 }
 
 static const tb_plugin plugin = {
