@@ -78,18 +78,29 @@ static void* take_snapshot(tb_world* w, size_t* size)
     return bytes;
 }
 
+/* A pile world stepped BEFORE times, its snapshot (returned, its size in *size), then
+ * `after` steps more, whose end state's hash goes to *first. */
+static void* snapshot_and_run(tb_broadphase broadphase, int after, tb_world** w, pile* p,
+                              size_t* size, uint64_t* first)
+{
+    *w = pile_world(broadphase, 0);
+    make_pile(*w, p, 0);
+    th_assert_ok(tb_world_step_n(*w, DT, BEFORE));
+    void* snapshot = take_snapshot(*w, size);
+    th_assert_ok(tb_world_step_n(*w, DT, after));
+    *first = pile_hash(*w, p);
+    return snapshot;
+}
+
 /* Snapshot, `after` steps, restore, `after` steps: the same state bit for bit, and a new
  * world given the snapshot ends there too. */
 static void continues_identically(tb_broadphase broadphase, int after)
 {
-    tb_world* w = pile_world(broadphase, 0);
+    tb_world* w;
     pile p;
-    make_pile(w, &p, 0);
-    th_assert_ok(tb_world_step_n(w, DT, BEFORE));
     size_t size;
-    void* snapshot = take_snapshot(w, &size);
-    th_assert_ok(tb_world_step_n(w, DT, after));
-    uint64_t first = pile_hash(w, &p);
+    uint64_t first;
+    void* snapshot = snapshot_and_run(broadphase, after, &w, &p, &size, &first);
     tb_body_def late = th_dynamic_def(p.extra, th_v3(0, 8, 0));   /* undone by the restore */
     tb_body_id extra = th_body(w, &late);
     th_assert_ok(tb_body_destroy(w, p.ids[3]));                   /* brought back by it */
@@ -135,14 +146,11 @@ static void test_restore_in_a_new_process(void** state)
 {
     (void)state;
     if (!th_large_scene_runs("the restore in a new process", "128")) return;
-    tb_world* w = pile_world(TB_BROADPHASE_LBVH, 0);
+    tb_world* w;
     pile p;
-    make_pile(w, &p, 0);
-    th_assert_ok(tb_world_step_n(w, DT, BEFORE));
     size_t size;
-    void* snapshot = take_snapshot(w, &size);
-    th_assert_ok(tb_world_step_n(w, DT, AFTER));
-    uint64_t first = pile_hash(w, &p);
+    uint64_t first;
+    void* snapshot = snapshot_and_run(TB_BROADPHASE_LBVH, AFTER, &w, &p, &size, &first);
     th_world_destroy(w);
     char path[] = "/tmp/tumble-snapshot-XXXXXX";
     int fd = mkstemp(path);

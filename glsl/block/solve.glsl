@@ -106,25 +106,32 @@ void add_point(inout newton e, block_point q, bool is_b, vec3 dpa, vec3 va, vec3
     add_row(e, q.t2, r, sign, f.z, q.stiffness);
 }
 
-vec3 lanes_sum(vec3 v)
+// The sums over groups of `lanes` neighbouring lanes (a power of two), by a butterfly of
+// shuffles: every lane of a group ends with the same sum, bit for bit.
+vec3 butterfly_sum(vec3 v, uint lanes)
 {
-    for (uint m = BLOCK_LANES >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
+    for (uint m = lanes >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
     return v;
 }
 
-mat3 lanes_sum(mat3 a)
+mat3 butterfly_sum(mat3 a, uint lanes)
 {
-    return mat3(lanes_sum(a[0]), lanes_sum(a[1]), lanes_sum(a[2]));
+    return mat3(butterfly_sum(a[0], lanes), butterfly_sum(a[1], lanes), butterfly_sum(a[2], lanes));
+}
+
+newton butterfly_sum(newton e, uint lanes)
+{
+    e.A = butterfly_sum(e.A, lanes);
+    e.B = butterfly_sum(e.B, lanes);
+    e.D = butterfly_sum(e.D, lanes);
+    e.gl = butterfly_sum(e.gl, lanes);
+    e.ga = butterfly_sum(e.ga, lanes);
+    return e;
 }
 
 newton lanes_sum(newton e)
 {
-    e.A = lanes_sum(e.A);
-    e.B = lanes_sum(e.B);
-    e.D = lanes_sum(e.D);
-    e.gl = lanes_sum(e.gl);
-    e.ga = lanes_sum(e.ga);
-    return e;
+    return butterfly_sum(e, BLOCK_LANES);
 }
 
 // How far a body moves along its Newton step (push.args.z, in thousandths; 0: the whole
@@ -256,21 +263,10 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
 struct newton_part { mat3 A, B, D; vec3 gl, ga; };
 shared newton_part tail_part[TAIL_PARTS];
 
-vec3 subgroup_sum(vec3 v)
-{
-    for (uint m = gl_SubgroupSize >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
-    return v;
-}
-
-mat3 subgroup_sum(mat3 a)
-{
-    return mat3(subgroup_sum(a[0]), subgroup_sum(a[1]), subgroup_sum(a[2]));
-}
-
 newton workgroup_sum(newton e)
 {
-    newton_part p = newton_part(subgroup_sum(e.A), subgroup_sum(e.B), subgroup_sum(e.D),
-                                subgroup_sum(e.gl), subgroup_sum(e.ga));
+    newton s = butterfly_sum(e, gl_SubgroupSize);
+    newton_part p = newton_part(s.A, s.B, s.D, s.gl, s.ga);
     if (gl_SubgroupInvocationID == 0u && gl_SubgroupID < TAIL_PARTS) tail_part[gl_SubgroupID] = p;
     memoryBarrierShared();
     barrier();
