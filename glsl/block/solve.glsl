@@ -212,6 +212,20 @@ void newton_step(newton e, uint i, tb_gpu_solver_body me, out vec3 my_dp, out ve
     my_dq = normalize(quat_mul(turn, me.delta_rotation));
 }
 
+// Body i takes its Newton step (lane 0 of those sharing it stores it); every lane gets
+// its new displacement and rotation vector.
+void move_body(newton e, uint i, tb_gpu_solver_body me, uint lane, out vec3 my_dp,
+               out vec3 my_v)
+{
+    vec4 my_dq;
+    newton_step(e, i, me, my_dp, my_dq);
+    if (lane == 0u) {
+        solver_bodies[i].delta_position.xyz = my_dp;
+        solver_bodies[i].delta_rotation = my_dq;
+    }
+    my_v = rotation_vector(my_dq);
+}
+
 // Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
 // (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
 // together, `valid` false on lanes without a body (beyond the colour's bodies).
@@ -232,13 +246,7 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
         add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
     e = lanes_sum(e);
     if (!valid) return;
-    vec4 my_dq;
-    newton_step(e, i, me, my_dp, my_dq);
-    if (lane == 0u) {
-        solver_bodies[i].delta_position.xyz = my_dp;
-        solver_bodies[i].delta_rotation = my_dq;
-    }
-    my_v = rotation_vector(my_dq);
+    move_body(e, i, me, lane, my_dp, my_v);
     // The multipliers of the contacts whose other body has already moved are updated here,
     // by the last of their bodies to move, so no pass of its own after the sweep needs a
     // dispatch and a read of every contact.
@@ -299,13 +307,7 @@ void solve_tail()
         for (uint at = lane; at < items; at += lanes)
             add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
         e = workgroup_sum(e);
-        vec4 my_dq;
-        newton_step(e, i, me, my_dp, my_dq);
-        if (lane == 0u) {
-            solver_bodies[i].delta_position.xyz = my_dp;
-            solver_bodies[i].delta_rotation = my_dq;
-        }
-        my_v = rotation_vector(my_dq);
+        move_body(e, i, me, lane, my_dp, my_v);
         uint order = uint(TB_MAX_COLOURS) + t;
         for (uint at = lane; at < items; at += lanes)
             update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);

@@ -16,6 +16,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <cglm/cglm.h>
+
 #include "scenes.h"
 
 typedef struct options {
@@ -67,18 +69,14 @@ static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* o
         }
         double speed = sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z);
         if (speed > out->fastest) out->fastest = speed;
-        /* Spin energy in the body frame would need its rotation; the world-frame moments
-         * of a body's principal axes: 1/2 w^T R I R^T w. */
-        double r[3][3] = {
-            { 1 - 2 * (q.y * q.y + q.z * q.z), 2 * (q.x * q.y - q.z * q.w), 2 * (q.x * q.z + q.y * q.w) },
-            { 2 * (q.x * q.y + q.z * q.w), 1 - 2 * (q.x * q.x + q.z * q.z), 2 * (q.y * q.z - q.x * q.w) },
-            { 2 * (q.x * q.z - q.y * q.w), 2 * (q.y * q.z + q.x * q.w), 1 - 2 * (q.x * q.x + q.y * q.y) } };
-        double local[3] = { 0, 0, 0 }, moments[3] = { inertia.x, inertia.y, inertia.z };
-        double wv[3] = { av.x, av.y, av.z };
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++) local[a] += r[b][a] * wv[b];
-        double spin = 0;
-        for (int a = 0; a < 3; a++) spin += moments[a] * local[a] * local[a];
+        /* Spin energy 1/2 w^T I w with w in the body's principal frame: R^T w. */
+        versor turn = { q.x, q.y, q.z, q.w }, back;
+        vec3 spin_world = { av.x, av.y, av.z }, local;
+        glm_quat_inv(turn, back);
+        glm_quat_rotatev(back, spin_world, local);
+        double spin = (double)inertia.x * local[0] * local[0] +
+                      (double)inertia.y * local[1] * local[1] +
+                      (double)inertia.z * local[2] * local[2];
         out->kinetic += 0.5 * mass * speed * speed + 0.5 * spin;
         out->potential -= mass * ((double)g.x * p.x + (double)g.y * p.y + (double)g.z * p.z);
     }
