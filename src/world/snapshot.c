@@ -56,6 +56,12 @@ enum { SEC_FREE, SEC_RECORDS, SEC_ARRAYS, SEC_BODY_PAIRS = SEC_ARRAYS + TB_ARRAY
 
 typedef struct section { size_t offset, bytes; } section;
 
+/* memcpy for sections that may be empty (their pointers NULL then, which memcpy forbids). */
+static void copy_bytes(void* to, const void* from, size_t n)
+{
+    if (n) memcpy(to, from, n);
+}
+
 static void layout(const snapshot_header* h, section out[SEC_COUNT])
 {
     size_t bytes[SEC_COUNT];
@@ -194,8 +200,8 @@ static tb_result download_step_state(tb_world* w, snapshot_header* h, unsigned c
     section s[SEC_COUNT];
     layout(h, s);
     if (slots) memcpy(out + s[SEC_BODY_PAIRS].offset, runs, s[SEC_BODY_PAIRS].bytes);
-    memcpy(out + s[SEC_PAIRS].offset, pairs, s[SEC_PAIRS].bytes);
-    memcpy(out + s[SEC_MANIFOLDS].offset, manifolds, s[SEC_MANIFOLDS].bytes);
+    copy_bytes(out + s[SEC_PAIRS].offset, pairs, s[SEC_PAIRS].bytes);
+    copy_bytes(out + s[SEC_MANIFOLDS].offset, manifolds, s[SEC_MANIFOLDS].bytes);
     memcpy(out + s[SEC_COUNTERS].offset, counters, s[SEC_COUNTERS].bytes);
     if (kept) memcpy(out + s[SEC_BROADPHASE].offset, kept, s[SEC_BROADPHASE].bytes);
     return TB_OK;
@@ -224,10 +230,10 @@ tb_result tb_world_save(tb_world* w, void* out, size_t capacity, size_t* size)
         size_t next = k + 1 < SEC_COUNT ? s[k + 1].offset : end;
         memset(bytes + end, 0, next - end);
     }
-    memcpy(bytes + s[SEC_FREE].offset, w->body_slots.free, s[SEC_FREE].bytes);
-    memcpy(bytes + s[SEC_RECORDS].offset, w->bodies, s[SEC_RECORDS].bytes);
+    copy_bytes(bytes + s[SEC_FREE].offset, w->body_slots.free, s[SEC_FREE].bytes);
+    copy_bytes(bytes + s[SEC_RECORDS].offset, w->bodies, s[SEC_RECORDS].bytes);
     for (int a = 0; a < TB_ARRAY_COUNT; a++)
-        memcpy(bytes + s[SEC_ARRAYS + a].offset, w->store.host[a], s[SEC_ARRAYS + a].bytes);
+        copy_bytes(bytes + s[SEC_ARRAYS + a].offset, w->store.host[a], s[SEC_ARRAYS + a].bytes);
     h.checksum = fnv1a(0xcbf29ce484222325ull, bytes + sizeof h, h.total_bytes - sizeof h);
     memcpy(bytes, &h, sizeof h);
     return TB_OK;
@@ -306,8 +312,8 @@ static tb_result restore_bodies(tb_world* w, const snapshot_header* h, const uns
     w->body_slots = (tb_slots){ h->slots_used, h->slots_live, free_list, h->free_count,
                                 h->free_count };
     for (uint32_t slot = 0; slot < w->shape_slots.used; slot++) w->shapes[slot].users = 0;
-    memset(w->bodies, 0, (size_t)w->body_record_capacity * sizeof *w->bodies);
-    memcpy(w->bodies, in + s[SEC_RECORDS].offset, s[SEC_RECORDS].bytes);
+    if (w->bodies) memset(w->bodies, 0, (size_t)w->body_record_capacity * sizeof *w->bodies);
+    copy_bytes(w->bodies, in + s[SEC_RECORDS].offset, s[SEC_RECORDS].bytes);
     for (uint32_t slot = 0; slot < h->slots_used; slot++)
         if (w->bodies[slot].alive) w->shapes[w->bodies[slot].shape].users++;
     uint32_t slots = w->store.slots > h->store_slots ? w->store.slots : h->store_slots;
