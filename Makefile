@@ -67,7 +67,7 @@ HAVE_GLFW  := $(shell pkg-config --exists glfw3 2>/dev/null && echo 1)
 RENDER_LIBS := -lpng $(if $(HAVE_GLFW),$(shell pkg-config --libs glfw3))
 RENDER_DEFS := $(if $(HAVE_GLFW),-DTR_HAVE_GLFW)
 
-.PHONY: all deps test test-build test-run run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python wheel check-layers print-libs examples check-examples FORCE
+.PHONY: all deps test test-build test-run run bench video clean install check-install check-exports check-readme abi-check abi-baseline check-abi-break check-python wheel check-layers print-libs examples check-examples sanitize fuzz FORCE
 .SECONDARY:
 all: $(BUILD)/libtumble.so $(BUILD)/libtumble.a $(TOOLS) $(PLUGINS)
 
@@ -337,6 +337,59 @@ test: deps test-build
 test-run: check-layers all $(TEST_BIN) $(TEST_PLUGINS) check-exports check-readme check-install check-examples abi-check check-abi-break check-python
 	$(Q)env $(TEST_ENV) sh tools/run-tests $(TEST_LOGS) $(TEST_JOBS) $(TEST_ORDER)
 
+# --- sanitizers and fuzzing (Debian's clang) ---------------------------------------------
+# The library again, built by clang with AddressSanitizer and UBSan (any report stops the
+# program): the API tests linked to it run in make test, and so does a minute of the
+# libFuzzer target tests/fuzz/fuzz_api.c. `make fuzz SECONDS=N` runs that target for N
+# seconds, growing a corpus in build/fuzz/corpus from the seeds in tests/fuzz/corpus.
+SAN_CC    ?= clang-14
+SAN_FLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+# The library's code also feeds the fuzzer's coverage (fuzzer-no-link).
+SAN_LIB_FLAGS := $(SAN_FLAGS) -fsanitize=fuzzer-no-link
+SAN       := $(BUILD)/san
+SAN_OBJ   := $(LIB_SRC:%.c=$(SAN)/obj/%.o) $(SAN)/obj/shaders.o $(SAN)/obj/glsl_headers.o
+SAN_TESTS := $(addprefix $(SAN)/tests/,test_api test_hull test_mesh test_compound test_snapshot)
+FUZZ_BIN  := $(SAN)/fuzz_api $(SAN)/fuzz_plugin.so
+SECONDS   ?= 60
+
+$(SAN)/obj/%.o: %.c
+	$(call say,SAN-CC,$<)
+	@mkdir -p $(dir $@)
+	$(Q)$(SAN_CC) $(CSTD) $(SAN_LIB_FLAGS) $(WARN) $(INCS) -DTB_BUILDING_LIBRARY -MMD -MP -c -o $@ $<
+
+$(SAN)/obj/%.o: $(BUILD)/%.c
+	$(call say,SAN-CC,$<)
+	@mkdir -p $(dir $@)
+	$(Q)$(SAN_CC) $(CSTD) $(SAN_LIB_FLAGS) $(INCS) -c -o $@ $<
+
+$(SAN)/libtumble.a: $(SAN_OBJ)
+	$(call say,AR,$@)
+	$(Q)rm -f $@ && ar rcs $@ $^
+
+$(SAN)/tests/%: tests/%.c tests/harness.c tests/harness.h $(SAN)/libtumble.a
+	$(call say,SAN-LD,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(SAN_CC) $(CSTD) $(SAN_FLAGS) $(WARN) -Iinclude -Iabi -Itests -Iglsl/common -Isrc -I$(BUILD) \
+	  -DTB_BUILD_DIR='"$(abspath $(BUILD))"' -DTB_SOURCE_DIR='"$(CURDIR)"' -o $@ $< tests/harness.c \
+	  $(SAN)/libtumble.a $(LIBS) -lcmocka
+
+FUZZ_SRC := tests/fuzz/fuzz_api.c tests/fuzz/describe.c
+$(SAN)/fuzz_api: $(FUZZ_SRC) tests/fuzz/input.h tests/fuzz/describe.h $(SAN)/libtumble.a
+	$(call say,SAN-LD,$@)
+	$(Q)$(SAN_CC) $(CSTD) $(SAN_FLAGS) -fsanitize=fuzzer $(WARN) -Iinclude -Iabi -Itests/fuzz \
+	  -DTB_SOURCE_DIR='"$(CURDIR)"' -o $@ $(FUZZ_SRC) $(SAN)/libtumble.a $(LIBS)
+
+$(SAN)/fuzz_plugin.so: tests/fuzz/plugin.c abi/tumble_plugin.h
+	$(call say,CC,$@)
+	@mkdir -p $(dir $@)
+	$(Q)$(CC) $(CSTD) $(CFLAGS) $(WARN) -Iinclude -Iabi -shared -fPIC -o $@ $<
+
+sanitize: $(SAN_TESTS) $(FUZZ_BIN)
+
+fuzz: deps
+	$(Q)$(MAKE) --no-print-directory -j$(BUILD_JOBS) $(FUZZ_BIN)
+	$(Q)env $(TEST_ENV) sh tools/fuzz $(SAN) $(SECONDS) $(BUILD)/fuzz
+
 # The ABI contract (abi/): libtumble.so compared with abi/libtumble.abi by libabigail's
 # abidiff, on the types of the public headers. Added functions are compatible; any other
 # change (a struct's layout, a signature, a removed function) fails. `make abi-baseline`
@@ -440,4 +493,4 @@ clean:
 	$(call say,RM,$(BUILD))
 	$(Q)rm -rf $(BUILD)
 
--include $(LIB_OBJ:.o=.d) $(SPV:=.d) $(RENDER_SPV:=.d)
+-include $(LIB_OBJ:.o=.d) $(SAN_OBJ:.o=.d) $(SPV:=.d) $(RENDER_SPV:=.d)

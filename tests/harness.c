@@ -1,6 +1,7 @@
 /* Helpers shared by the Tumble tests; see harness.h. */
 #include "harness.h"
 
+#include <dlfcn.h>
 #include <math.h>
 #include <stdlib.h>
 #include <stdio.h>
@@ -51,8 +52,31 @@ static th_world_slot* th_slot_find(const tb_world* w)
     return NULL;
 }
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TH_SANITIZED 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define TH_SANITIZED 1
+#endif
+
+/* Under AddressSanitizer: the Vulkan loader unloads the driver and the validation layer
+ * when a world ends, and LeakSanitizer then cannot name what they kept (their caches) to
+ * match tests/lsan.supp. Loaded here for good, they stay named. */
+static void th_keep_vulkan_loaded(void)
+{
+#ifdef TH_SANITIZED
+    static int done;
+    if (done++) return;
+    (void)dlopen("libvulkan_lvp.so", RTLD_NOW | RTLD_NODELETE);
+    (void)dlopen("libVkLayer_khronos_validation.so", RTLD_NOW | RTLD_NODELETE);
+#endif
+}
+
 tb_world* th_world_create_ex(const tb_world_def* def_or_null, int allow_logged_errors)
 {
+    th_keep_vulkan_loaded();
     tb_world_def def = def_or_null ? *def_or_null : tb_default_world_def();
     th_world_slot* slot = th_slot_alloc();
     def.validation = 1;
