@@ -275,6 +275,35 @@ static void test_bad_snapshots_are_refused(void** state)
     th_world_destroy(w);
 }
 
+/* A restore hands the shapes' bodies over and leaves their compounds: a compound's child
+ * stays in use, and a shape stays in use by the bodies the snapshot has (found by the fuzz
+ * target: a restore forgot the compounds, and destroying one then wrapped its child's
+ * count of users around). */
+static void test_restore_keeps_shape_users(void** state)
+{
+    (void)state;
+    tb_world* w = pile_world(TB_BROADPHASE_LBVH, 0);
+    tb_shape_id ball = th_sphere(w, 0.5f);
+    tb_compound_child child = { ball, th_v3(0, 0, 0), { 0, 0, 0, 1 } };
+    tb_shape_id compound, box = th_box(w, th_v3(0.5f, 0.5f, 0.5f));
+    th_assert_ok(tb_shape_create_compound(w, &child, 1, &compound));
+    tb_body_def d = th_dynamic_def(box, th_v3(0, 2, 0));
+    tb_body_id body = th_body(w, &d);
+    size_t size;
+    unsigned char* snapshot = take_snapshot(w, &size);
+    th_assert_ok(tb_body_destroy(w, body));
+    th_assert_ok(tb_world_restore(w, snapshot, size));
+    th_assert_result(tb_shape_destroy(w, ball), TB_ERROR_IN_USE);   /* its compound's */
+    th_assert_result(tb_shape_destroy(w, box), TB_ERROR_IN_USE);    /* the restored body's */
+    th_assert_ok(tb_world_restore(w, snapshot, size));              /* twice: no double count */
+    th_assert_ok(tb_shape_destroy(w, compound));
+    th_assert_ok(tb_shape_destroy(w, ball));
+    th_assert_ok(tb_body_destroy(w, body));
+    th_assert_ok(tb_shape_destroy(w, box));
+    free(snapshot);
+    th_world_destroy(w);
+}
+
 int main(int argc, char** argv)
 {
     if (argc == 4 && strcmp(argv[1], "--restore") == 0) return restore_child(argv[2], argv[3]);
@@ -283,6 +312,7 @@ int main(int argc, char** argv)
         cmocka_unit_test(test_restore_under_every_broadphase),
         cmocka_unit_test(test_restore_in_a_new_process),
         cmocka_unit_test(test_bad_snapshots_are_refused),
+        cmocka_unit_test(test_restore_keeps_shape_users),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

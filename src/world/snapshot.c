@@ -308,10 +308,12 @@ static tb_result restore_bodies(tb_world* w, const snapshot_header* h, const uns
         if (!free_list) return tb_fail(&w->diag, TB_ERROR_OUT_OF_MEMORY, "out of host memory");
         memcpy(free_list, in + s[SEC_FREE].offset, s[SEC_FREE].bytes);
     }
+    /* A shape's users are its bodies and its compounds: only the bodies change hands. */
+    for (uint32_t slot = 0; slot < w->body_slots.used; slot++)
+        if (w->bodies[slot].alive) w->shapes[w->bodies[slot].shape].users--;
     tb_slots_free(&w->body_slots);
     w->body_slots = (tb_slots){ h->slots_used, h->slots_live, free_list, h->free_count,
                                 h->free_count };
-    for (uint32_t slot = 0; slot < w->shape_slots.used; slot++) w->shapes[slot].users = 0;
     if (w->bodies) memset(w->bodies, 0, (size_t)w->body_record_capacity * sizeof *w->bodies);
     copy_bytes(w->bodies, in + s[SEC_RECORDS].offset, s[SEC_RECORDS].bytes);
     for (uint32_t slot = 0; slot < h->slots_used; slot++)

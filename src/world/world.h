@@ -48,7 +48,7 @@ typedef struct tb_shape_record {
     tb_shape_def material;
     float volume;           ///< m^3; 0 for planes
     tb_vec3 unit_inertia;   ///< principal moments of inertia per kg of mass
-    uint32_t users;         ///< live bodies using the shape
+    uint32_t users;         ///< live bodies and compounds using the shape
     tb_hull* hull;          ///< hulls and boxes: the geometry the GPU gets (owned); else NULL
     tb_mesh* mesh;          ///< meshes: their geometry (owned); else NULL
     tb_heightfield* heightfield; ///< heightfields: their grid (owned); else NULL
