@@ -1,6 +1,11 @@
 /* bench-soak: a long run of one scene, reporting at intervals what must not drift.
  *
  *   build/bench-soak [--scene NAME] [--n N] [--steps TOTAL] [--every K] [--device NAME]
+ *                    [--restore FILE] [--save FILE]
+ *
+ * A long run can go in pieces: --save writes a snapshot of the world at the end
+ * (tb_world_snapshot), and --restore starts from one (the same scene and N); the step
+ * numbers then go on from the snapshot's, and TOTAL counts the steps of this piece.
  *
  * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
  * interval, the GPU ms of its last step, bodies whose pose or velocity is not finite,
@@ -24,6 +29,8 @@ typedef struct options {
     const char* scene;
     uint32_t n, every;
     uint64_t steps;
+    const char* save;
+    const char* restore;
 } options;
 
 typedef struct sample {
@@ -86,7 +93,7 @@ static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* o
 
 static int parse(int argc, char** argv, options* o)
 {
-    *o = (options){ "boxes", 1000, 1, 1000000 };
+    *o = (options){ "boxes", 1000, 1, 1000000, NULL, NULL };
     o->every = 10000;
     for (int i = 1; i < argc; i++) {
         const char* a = argv[i];
@@ -97,14 +104,49 @@ static int parse(int argc, char** argv, options* o)
         else if (strcmp(a, "--n") == 0 && v && scene_parse_u32(v, &u) && u) o->n = u;
         else if (strcmp(a, "--every") == 0 && v && scene_parse_u32(v, &u) && u) o->every = u;
         else if (strcmp(a, "--steps") == 0 && v && scene_parse_u32(v, &u) && u) o->steps = u;
+        else if (strcmp(a, "--save") == 0 && v) o->save = v;
+        else if (strcmp(a, "--restore") == 0 && v) o->restore = v;
         else {
             fprintf(stderr, "usage: bench-soak [--scene NAME] [--n N] [--steps TOTAL] "
-                            "[--every K] [--device NAME]\n");
+                            "[--every K] [--device NAME] [--restore FILE] [--save FILE]\n");
             return 1;
         }
         i++;
     }
     return 0;
+}
+
+/* The world from the snapshot in `path` (0), or 1 with a sentence. */
+static int restore_file(tb_world* w, const char* path)
+{
+    FILE* f = fopen(path, "rb");
+    long size = -1;
+    if (f && fseek(f, 0, SEEK_END) == 0) size = ftell(f);
+    void* bytes = size > 0 ? malloc((size_t)size) : NULL;
+    int bad = !bytes || fseek(f, 0, SEEK_SET) != 0 || fread(bytes, 1, (size_t)size, f) != (size_t)size;
+    if (f) fclose(f);
+    if (!bad && tb_world_restore(w, bytes, (size_t)size) != TB_OK) {
+        fprintf(stderr, "bench-soak: %s: %s\n", path, tb_world_last_error(w));
+        bad = 1;
+    } else if (bad) {
+        fprintf(stderr, "bench-soak: cannot read %s\n", path);
+    }
+    free(bytes);
+    return bad;
+}
+
+static int save_file(tb_world* w, const char* path)
+{
+    size_t size = 0;
+    tb_world_snapshot(w, NULL, 0, &size);
+    void* bytes = size ? malloc(size) : NULL;
+    FILE* f = bytes ? fopen(path, "wb") : NULL;
+    int bad = !f || tb_world_snapshot(w, bytes, size, &size) != TB_OK ||
+              fwrite(bytes, 1, size, f) != size;
+    if (f && fclose(f) != 0) bad = 1;
+    if (bad) fprintf(stderr, "bench-soak: cannot save a snapshot to %s\n", path);
+    free(bytes);
+    return bad;
 }
 
 int main(int argc, char** argv)
@@ -132,10 +174,14 @@ int main(int argc, char** argv)
         tb_body_type type;
         if (!tb_body_get_type(w, all[i], &type) && type == TB_BODY_DYNAMIC) ids[dynamic++] = all[i];
     }
+    if (o.restore && restore_file(w, o.restore)) return 2;
+    tb_world_stats start;
+    tb_world_get_stats(w, &start);
     tb_device_info info;
     tb_world_device_info(w, &info);
-    printf("bench-soak: scene %s, %u dynamic bodies, %llu steps of %g s, a line every %u, on %s\n",
-           sc->name, dynamic, (unsigned long long)o.steps, (double)sc->dt, o.every, info.name);
+    printf("bench-soak: scene %s, %u dynamic bodies, %llu steps of %g s from step %llu, a line "
+           "every %u, on %s\n", sc->name, dynamic, (unsigned long long)o.steps, (double)sc->dt,
+           (unsigned long long)start.steps, o.every, info.name);
     printf("%10s %8s %7s %6s %6s %14s %14s %10s %8s %8s %8s %7s %9s %9s %7s\n", "steps",
            "ms/step", "gpu ms", "nan", "isol", "kinetic J", "potential J", "fastest", "RSS MB",
            "pairs", "points", "colours", "bodies", "pair cap", "grown");
@@ -160,7 +206,7 @@ int main(int argc, char** argv)
         if (done <= o.steps / 2 || mid_energy == 0) mid_energy = energy;
         last_energy = energy;
         printf("%10llu %8.3f %7.3f %6u %6u %14.2f %14.2f %10.4f %8.1f %8u %8u %7u %9u %9u %7llu\n",
-               (unsigned long long)done, ms, st.gpu_ms, s.non_finite, s.isolated, s.kinetic,
+               (unsigned long long)st.steps, ms, st.gpu_ms, s.non_finite, s.isolated, s.kinetic,
                s.potential, s.fastest, rss, st.pair_count, st.contact_count, st.colour_count,
                st.body_capacity, st.pair_capacity, (unsigned long long)st.buffer_growths);
         fflush(stdout);
@@ -172,6 +218,7 @@ int main(int argc, char** argv)
            last_energy - mid_energy,
            mid_energy != 0 ? 100.0 * (last_energy - mid_energy) / fabs(mid_energy) : 0.0,
            resident_mb() - first_rss);
+    if (!bad && o.save && save_file(w, o.save)) bad = 1;
     sc->destroy(inst);
     tb_world_destroy(w);
     free(ids);
