@@ -3,9 +3,10 @@
  *   build/bench-soak [--scene NAME] [--n N] [--steps TOTAL] [--every K] [--device NAME]
  *                    [--restore FILE] [--save FILE]
  *
- * A long run can go in pieces: --save writes a snapshot of the world at the end
- * (tb_world_snapshot), and --restore starts from one (the same scene and N); the step
- * numbers then go on from the snapshot's, and TOTAL counts the steps of this piece.
+ * A long run can go in pieces: --save writes a snapshot of the world (tb_world_snapshot)
+ * with every line, so a piece cut short by a time limit leaves its last one, and
+ * --restore starts from one (the same scene and N); the step numbers then go on from the
+ * snapshot's, and TOTAL counts the steps of this piece.
  *
  * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
  * interval, the GPU ms of its last step, bodies whose pose or velocity is not finite,
@@ -140,10 +141,13 @@ static int save_file(tb_world* w, const char* path)
     size_t size = 0;
     tb_world_snapshot(w, NULL, 0, &size);
     void* bytes = size ? malloc(size) : NULL;
-    FILE* f = bytes ? fopen(path, "wb") : NULL;
+    char part[4096];
+    snprintf(part, sizeof part, "%s.part", path);   /* whole snapshots only, even if killed */
+    FILE* f = bytes ? fopen(part, "wb") : NULL;
     int bad = !f || tb_world_snapshot(w, bytes, size, &size) != TB_OK ||
               fwrite(bytes, 1, size, f) != size;
     if (f && fclose(f) != 0) bad = 1;
+    if (!bad && rename(part, path) != 0) bad = 1;
     if (bad) fprintf(stderr, "bench-soak: cannot save a snapshot to %s\n", path);
     free(bytes);
     return bad;
@@ -211,6 +215,7 @@ int main(int argc, char** argv)
                st.body_capacity, st.pair_capacity, (unsigned long long)st.buffer_growths);
         fflush(stdout);
         if (s.non_finite) bad = 1;
+        if (!bad && o.save && save_file(w, o.save)) bad = 1;
     }
     printf("summary: %s; total energy over the second half %+.3f J (%.4f %% of its size); "
            "resident memory after the first interval %+.1f MB\n",
@@ -218,7 +223,6 @@ int main(int argc, char** argv)
            last_energy - mid_energy,
            mid_energy != 0 ? 100.0 * (last_energy - mid_energy) / fabs(mid_energy) : 0.0,
            resident_mb() - first_rss);
-    if (!bad && o.save && save_file(w, o.save)) bad = 1;
     sc->destroy(inst);
     tb_world_destroy(w);
     free(ids);
