@@ -75,15 +75,10 @@ deps:
 	$(Q)sh tools/deps $(DEPS)
 
 # --- shaders: GLSL -> SPIR-V (optimised, validated) -> C array embedded in the library ---
-# spirv-opt -O: a driver has less to do with the result; lavapipe creates a world's
-# pipelines in 40 % less time (most of what a small test spends).
-SPIRVOPT ?= spirv-opt
 $(BUILD)/spv/%.spv: glsl/%.comp
 	$(call say,GLSL,$<)
 	@mkdir -p $(dir $@)
-	$(Q)$(GLSLANG) -V --target-env vulkan1.2 -Iglsl/common --quiet --depfile $@.d -o $@.raw $< >/dev/null
-	$(Q)sed -i 's|\.raw:|:|' $@.d
-	$(Q)$(SPIRVOPT) -O --target-env=vulkan1.2 -o $@ $@.raw && rm -f $@.raw
+	$(Q)$(GLSLANG) -V --target-env vulkan1.2 -Iglsl/common --quiet --depfile $@.d -o $@ $< >/dev/null
 	$(Q)$(SPIRVVAL) --target-env vulkan1.2 $@
 
 # One table of every embedded shader, named by its path under glsl/ without extension.

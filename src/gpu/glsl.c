@@ -152,9 +152,6 @@ static shaderc_compile_options_t make_options(include_context* ctx)
     shaderc_compile_options_set_target_env(options, shaderc_target_env_vulkan,
                                            shaderc_env_version_vulkan_1_2);
     shaderc_compile_options_set_include_callbacks(options, include_file, release_include, ctx);
-    /* The optimiser's passes of `spirv-opt -O`, as the build gives the embedded shaders: a
-     * reloaded shader computes what its embedded twin does. */
-    shaderc_compile_options_set_optimization_level(options, shaderc_optimization_level_performance);
     return options;
 }
 
