@@ -55,7 +55,7 @@ CXX        ?= g++
 TOOLS      := $(BUILD)/bench $(BUILD)/tumble-run $(BUILD)/bench-prims $(BUILD)/bench-distance \
               $(BUILD)/bench-soak
 PLUGINS := $(BUILD)/plugins/tb_blast.so $(BUILD)/plugins/tb_blast_glsl.so $(BUILD)/plugins/tb_contact_logger.so
-REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage
+REFUSED_PLUGINS := newer no_entry not_spirv bad_spirv bad_glsl pairs_early huge_stage glsl_dir
 TEST_PLUGINS := $(REFUSED_PLUGINS:%=$(BUILD)/tests/plugins/refused_%.so) $(BUILD)/tests/plugins/broken.comp \
                 $(BUILD)/tests/plugins/count_events.so $(BUILD)/tests/plugins/nested_step.so \
                 $(BUILD)/tests/plugins/poison.so $(BUILD)/tests/plugins/poison.comp

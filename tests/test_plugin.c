@@ -205,6 +205,7 @@ static void test_broken_plugins_are_refused(void** state)
         { "tests/plugins/refused_bad_glsl.so", "broken.comp:5: error" },
         { "tests/plugins/refused_pairs_early.so", "per-pair stage" },
         { "tests/plugins/refused_huge_stage.so", "2147483647 bytes" },
+        { "tests/plugins/refused_glsl_dir.so", "cannot read shader" },
         { "tests/plugins/no_such_plugin.so", "cannot load plugin" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)

@@ -2,6 +2,8 @@
 #define _XOPEN_SOURCE 700 /* realpath */
 #include "gpu/glsl.h"
 
+#include "base/file.h"
+
 #include <limits.h>
 #include <shaderc/shaderc.h>
 #include <stdio.h>
@@ -15,23 +17,10 @@ typedef struct include_context {
     int out_of_memory;
 } include_context;
 
+/* A shader's text (at most 64 MiB, through #include too), or NULL. */
 static char* read_text(const char* path, size_t* size)
 {
-    FILE* f = fopen(path, "rb");
-    if (!f) return NULL;
-    char* text = NULL;
-    long n = fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
-    if (n >= 0 && fseek(f, 0, SEEK_SET) == 0 && (text = malloc((size_t)n + 1))) {
-        if (fread(text, 1, (size_t)n, f) == (size_t)n) {
-            text[n] = 0;
-            *size = (size_t)n;
-        } else {
-            free(text);
-            text = NULL;
-        }
-    }
-    fclose(f);
-    return text;
+    return (char*)tb_file_read(path, (size_t)64 << 20, size);
 }
 
 static char* copy_string(const char* s)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/file.h"
 #include "gpu/shaders.h"
 #include "layout.h"
 
@@ -84,23 +85,15 @@ static int cache_header_matches(const tb_gpu* gpu, const unsigned char* data, si
            memcmp(header.pipelineCacheUUID, gpu->props.pipelineCacheUUID, VK_UUID_SIZE) == 0;
 }
 
+/* The cache file's bytes when its header matches this device (at most 1 GiB), or NULL. */
 static unsigned char* read_cache_file(const tb_gpu* gpu, const char* path, size_t* size)
 {
-    FILE* f = path ? fopen(path, "rb") : NULL;
-    if (!f) return NULL;
-    unsigned char* data = NULL;
-    if (fseek(f, 0, SEEK_END) == 0) {
-        long n = ftell(f);
-        rewind(f);
-        data = n > 0 ? malloc((size_t)n) : NULL;
-        if (data && fread(data, 1, (size_t)n, f) == (size_t)n && cache_header_matches(gpu, data, (size_t)n)) {
-            *size = (size_t)n;
-        } else {
-            free(data);
-            data = NULL;
-        }
+    unsigned char* data = tb_file_read(path, (size_t)1 << 30, size);
+    if (data && !cache_header_matches(gpu, data, *size)) {
+        free(data);
+        data = NULL;
     }
-    fclose(f);
+    if (!data) *size = 0;
     return data;
 }
 

@@ -9,6 +9,7 @@
 #define REFUSED_PAIRS_EARLY 6 /* a per-pair stage at the pre-step point */
 #define REFUSED_HUGE_STAGE 7  /* two stages whose size field says 2 GB: the second would be
                                  read far past the array */
+#define REFUSED_GLSL_DIR 8    /* a stage whose GLSL path names a directory */
 
 #if REFUSED == REFUSED_BAD_SPIRV
 /* A module header (magic, version 1.5, generator, bound, schema) and then nonsense. */
@@ -25,6 +26,8 @@ static const tb_plugin_stage stages[] = { {
     .spirv = not_spirv, .spirv_size = sizeof not_spirv,
 #elif REFUSED == REFUSED_BAD_SPIRV
     .spirv = broken_spirv, .spirv_size = sizeof broken_spirv,
+#elif REFUSED == REFUSED_GLSL_DIR
+    .glsl_path = ".",   /* the folder the shared object is in */
 #else
     .glsl_path = "broken.comp",   /* beside the shared object: a syntax error on line 5 */
 #endif
