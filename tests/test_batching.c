@@ -82,6 +82,7 @@ static void fixture_init_defs(fixture* f, tb_world* w, const tb_body_def* defs, 
     tb_pipelines_bind(p, TB_BIND_SOLVER_BODIES, f->solver_bodies.buffer);
     tb_graph_invalidate(&w->graph);
     th_assert_ok(tb_solver_init(&f->solver, p));
+    th_assert_ok(tb_solver_prepare_soft_step(&f->solver));
 }
 
 /* `bodies` unit spheres, the first `statics` static. */

@@ -213,15 +213,21 @@ static void test_impact_is_not_carried(void** state)
     impact_is_not_carried(1);
 }
 
+static int crowd_on_cpu;   /* crowd_after's world ran on a CPU device */
+
 /* The centres of n spheres of radius 0.5 started within 1 cm of the origin without gravity,
  * after `steps` steps with the block solver; the stats of the first step, and the slowest
  * ball's speed after it. */
+
 static void crowd_after(uint32_t n, uint32_t steps, tb_vec3* at, tb_world_stats* stats,
                         double* slowest)
 {
     tb_world_def def = tb_default_world_def();
     def.gravity = th_v3(0, 0, 0);
     tb_world* w = block_world_of(&def);
+    tb_device_info info;
+    th_assert_ok(tb_world_device_info(w, &info));
+    crowd_on_cpu = info.is_cpu;
     tb_shape_id ball = bouncy_sphere(w, 0.5f, 0.3f);   /* the bounce's tail pass runs too */
     th_rng rng = th_rng_seed(11);
     tb_body_id ids[128];
@@ -290,6 +296,29 @@ static void test_crowd_with_the_wide_tail(void** state)
     setenv("TUMBLE_WIDE_TAIL", "1", 1);
     crowd_beyond_the_colours();
     unsetenv("TUMBLE_WIDE_TAIL");
+}
+
+/* The sweeps with 16 and 32 lanes a body, held by TUMBLE_BLOCK_LANES (a world on lavapipe
+ * otherwise keeps the 8-lane sweep, the same kernel there): made on first use, valid, and
+ * on lavapipe, which runs every sweep one lane a body, the same crowd to the bit. */
+static void test_wide_sweeps_agree(void** state)
+{
+    (void)state;
+    enum { N = 20 };
+    tb_vec3 at[3][N];
+    tb_world_stats stats;
+    double slowest;
+    const char* lanes[3] = { NULL, "16", "32" };
+    for (int run = 0; run < 3; run++) {
+        if (lanes[run]) setenv("TUMBLE_BLOCK_LANES", lanes[run], 1);
+        crowd_after(N, 40, at[run], &stats, &slowest);
+        unsetenv("TUMBLE_BLOCK_LANES");
+    }
+    assert_true(slowest > 0.1);
+    if (crowd_on_cpu) {
+        assert_memory_equal(at[0], at[1], sizeof at[0]);
+        assert_memory_equal(at[0], at[2], sizeof at[0]);
+    }
 }
 
 /* The sweeps' lanes a body (8, 16, 32) follow the bodies and their contact points, with a
@@ -381,6 +410,7 @@ int main(void)
         cmocka_unit_test(test_crowd_beyond_the_colours),
         cmocka_unit_test(test_crowd_with_the_wide_tail),
         cmocka_unit_test(test_lanes_choice),
+        cmocka_unit_test(test_wide_sweeps_agree),
         cmocka_unit_test(test_solver_choice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -78,6 +78,11 @@ tb_pass tb_pass_with_args(VkPipeline pipeline, tb_dispatch_rule rule, VkBuffer i
 
 tb_result tb_pass_list_add(tb_pass_list* list, tb_diag* diag, const tb_pass* pass)
 {
+    /* A stage whose pipeline was never made (pipelines made on first use) would crash the
+     * driver when the step runs. */
+    if (!pass->pipeline)
+        return tb_fail(diag, TB_ERROR_DEVICE, "a pass of the step has no pipeline (a bug in "
+                       "Tumble: a stage recorded before its pipeline was made)");
     if (list->count == list->capacity) {
         uint32_t cap = list->capacity ? list->capacity * 2 : 16;
         tb_pass* grown = realloc(list->passes, cap * sizeof *grown);

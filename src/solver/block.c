@@ -28,12 +28,17 @@ static const tb_pipeline_slot kernels[] = {
     { "block/start", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, start) },
     { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
     { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
-    { "block/solve_16", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_16) },
-    { "block/solve_32", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_32) },
     { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
     { "block/bounce", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, bounce) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
+
+/* The sweeps with 16 and 32 lanes a body, made when a world first wants them
+ * (tb_block_prepare_lanes). */
+static const tb_pipeline_slot wide_kernels[] = {
+    { "block/solve_16", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_16) },
+    { "block/solve_32", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_32) },
+};
 
 tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines)
 {
@@ -57,6 +62,7 @@ void tb_block_destroy(tb_block_solver* s)
 {
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
+    tb_pipeline_destroy_slots(s->pipelines, wide_kernels, 2, s);
     if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
     memset(s, 0, sizeof *s);
 }
@@ -76,6 +82,15 @@ static uint32_t lanes_at(double bodies, double entries, double slack)
     if (entries >= ENTRIES_FOR_32 * slack * bodies) return 32;
     if (entries >= ENTRIES_FOR_16 * slack * bodies) return 16;
     return 8;
+}
+
+tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes)
+{
+    tb_result r = TB_OK;
+    if (lanes >= 16 && !s->solve_16) r = tb_pipeline_create_slots(s->pipelines, wide_kernels, 1, s);
+    if (!r && lanes >= 32 && !s->solve_32)
+        r = tb_pipeline_create_slots(s->pipelines, wide_kernels + 1, 1, s);
+    return r;
 }
 
 uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t current)

@@ -6,21 +6,28 @@
 
 #include "layout.h"
 
-/* Workgroup sizes: per-pair passes match counters.pair_dispatch, colour_finish has one thread
- * per colour, solve matches counters.colour_dispatch, the tail is one thread. */
+/* The contacts' constraints, the free motion and the integration, which both solvers use. */
 static const tb_pipeline_slot kernels[] = {
-    { "solver/colour_claim", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_claim) },
-    { "solver/colour_decide", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_decide) },
-    { "solver/colour_finish", TB_MAX_COLOURS, offsetof(tb_solver, colour_finish) },
     { "solver/prepare", TB_WORKGROUP_SIZE, offsetof(tb_solver, prepare) },
-    { "solver/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_solver, solve) },
-    { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
     { "integrate/substep", TB_WORKGROUP_SIZE, offsetof(tb_solver, substep) },
-    { "solver/tail_list", TB_WORKGROUP_SIZE, offsetof(tb_solver, tail_list) },
     { "integrate/apply_forces", TB_WORKGROUP_SIZE, offsetof(tb_solver, apply_forces) },
     { "integrate/integrate", TB_WORKGROUP_SIZE, offsetof(tb_solver, integrate) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
+
+/* The soft step's own, made when a world first uses it (on lavapipe they take a tenth of a
+ * world's creation). Workgroup sizes: per-pair passes match counters.pair_dispatch,
+ * colour_finish has one thread per colour, solve matches counters.colour_dispatch, the tail
+ * is one thread. */
+static const tb_pipeline_slot soft_kernels[] = {
+    { "solver/colour_claim", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_claim) },
+    { "solver/colour_decide", TB_WORKGROUP_SIZE, offsetof(tb_solver, colour_decide) },
+    { "solver/colour_finish", TB_MAX_COLOURS, offsetof(tb_solver, colour_finish) },
+    { "solver/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_solver, solve) },
+    { "solver/solve_tail", 1, offsetof(tb_solver, solve_tail) },
+    { "solver/tail_list", TB_WORKGROUP_SIZE, offsetof(tb_solver, tail_list) },
+};
+#define SOFT_KERNEL_COUNT (sizeof soft_kernels / sizeof soft_kernels[0])
 
 tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines)
 {
@@ -30,10 +37,19 @@ tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines)
     return r;
 }
 
+tb_result tb_solver_prepare_soft_step(tb_solver* s)
+{
+    if (s->soft_step_ready) return TB_OK;
+    tb_result r = tb_pipeline_create_slots(s->pipelines, soft_kernels, SOFT_KERNEL_COUNT, s);
+    if (!r) s->soft_step_ready = 1;
+    return r;
+}
+
 void tb_solver_destroy(tb_solver* s)
 {
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
+    tb_pipeline_destroy_slots(s->pipelines, soft_kernels, SOFT_KERNEL_COUNT, s);
     memset(s, 0, sizeof *s);
 }
 

@@ -163,7 +163,9 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 /* The block solver's lanes a body for the bodies and contact points of the last step. */
 static void fit_block_lanes(tb_world* w, const tb_gpu_counters* c)
 {
-    if (!w->block_solver) return;
+    /* A CPU device (lavapipe) runs one lane a body whatever the sweep asks for
+     * (glsl/block/block.glsl): the three sweeps are one kernel there. */
+    if (!w->block_solver || w->gpu.is_cpu || w->block_lanes_fixed) return;
     uint32_t lanes = tb_block_lanes_for(w->body_slots.live, c->solver.w, w->block_lanes);
     if (lanes == w->block_lanes) return;
     w->block_lanes = lanes;

@@ -149,6 +149,7 @@ static void block_colour_stage(builder* b)
         .tail_count = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, colouring) + 8),
         .body_capacity = sim->body_capacity,
     };
+    if (!b->r) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
                                                 w->colour_rounds, w->block_lanes);
     end_stage(b, "solver/colour");

@@ -58,6 +58,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
                             w->store.capacity, pairs, w->block_solver);
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r && w->block_solver) r = tb_block_init(&w->block, &w->pipelines);
+    if (!r && !w->block_solver) r = tb_solver_prepare_soft_step(&w->solver);
     if (!r) r = tb_step_kernels_create(w);
     if (!r) r = tb_world_plugins_init(w);
     w->bp.kit = w->kit;
@@ -90,6 +91,13 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
     w->block_lanes = 8;
+    /* TUMBLE_BLOCK_LANES=8, 16 or 32 holds the block solver's sweeps at that many lanes a
+     * body instead of choosing (to measure them, and to run the wide sweeps on lavapipe). */
+    const char* lanes = getenv("TUMBLE_BLOCK_LANES");
+    if (lanes && (!strcmp(lanes, "8") || !strcmp(lanes, "16") || !strcmp(lanes, "32"))) {
+        w->block_lanes = (uint32_t)atoi(lanes);
+        w->block_lanes_fixed = 1;
+    }
     /* The block solver unless the environment asks for the soft step (TUMBLE_SOLVER=soft). */
     const char* solver = getenv("TUMBLE_SOLVER");
     w->block_solver = !(solver && strcmp(solver, "soft") == 0);
@@ -148,6 +156,7 @@ tb_result tb_world_use_solver(tb_world* w, int block, uint32_t iterations)
 {
     tb_result r = TB_OK;
     if (block && !w->block.pipelines) r = tb_block_init(&w->block, &w->pipelines);
+    if (!r && !block) r = tb_solver_prepare_soft_step(&w->solver);
     if (!r) r = tb_sim_set_block_lists(&w->sim, &w->transfer, block);
     if (r) return r;
     w->block_solver = block;

@@ -101,6 +101,7 @@ struct tb_world {
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
     uint32_t block_lanes;        ///< lanes a body in the block solver's sweeps (tb_block_lanes_for)
+    int block_lanes_fixed;       ///< block_lanes set by TUMBLE_BLOCK_LANES, not chosen
     uint32_t substeps, solver_iterations;
     float contact_margin, restitution_threshold;
     float contact_hertz, contact_damping_ratio, contact_push_speed;
