@@ -24,6 +24,9 @@
 tb_result tb_api_world_create(const tb_world_def* def, const tb_gpu_options* extra,
                               tb_world** out);
 
+/// Refuses `call` while plugins' contact callbacks run (within a step), with its sentence.
+tb_result tb_api_refuse_in_callbacks(tb_world* w, const char* call);
+
 /// A shape def's checks (initialised, density, friction, restitution) and out not NULL.
 tb_result tb_api_check_shape_def(tb_world* w, const tb_shape_def* def, tb_shape_id* out);
 

@@ -1,18 +1,12 @@
 /* Plugins through the API (abi/tumble_plugin.h); loading and checking them is
  * src/plugin/'s work. */
+#include "api/api.h"
 #include "world/world.h"
-
-/* The plugins are being called: loading or unloading one would change what is iterated. */
-static tb_result refuse_in_callbacks(tb_world* w, const char* what)
-{
-    return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "a plugin cannot be %s from a "
-                   "plugin's contact callback", what);
-}
 
 tb_result tb_world_load_plugin(tb_world* w, const char* path, tb_plugin_id* out)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (w->in_callbacks) return refuse_in_callbacks(w, "loaded");
+    if (w->in_callbacks) return tb_api_refuse_in_callbacks(w, "tb_world_load_plugin");
     if (!path || !out) return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "path or out is NULL");
     return tb_world_plugin_load(w, path, out);
 }
@@ -20,7 +14,7 @@ tb_result tb_world_load_plugin(tb_world* w, const char* path, tb_plugin_id* out)
 tb_result tb_world_unload_plugin(tb_world* w, tb_plugin_id id)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (w->in_callbacks) return refuse_in_callbacks(w, "unloaded");
+    if (w->in_callbacks) return tb_api_refuse_in_callbacks(w, "tb_world_unload_plugin");
     return tb_world_plugin_unload(w, id);
 }
 

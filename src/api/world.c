@@ -62,12 +62,19 @@ tb_result tb_world_create(const tb_world_def* def, tb_world** out)
     return tb_api_world_create(def, &none, out);
 }
 
+/* Within a step the plugins' callbacks are being iterated and the world is in use: a call
+ * that would step, free, save or load it, or change its plugins, is refused. */
+tb_result tb_api_refuse_in_callbacks(tb_world* w, const char* call)
+{
+    return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "%s cannot be called from a plugin's "
+                   "contact callback, within a step", call);
+}
+
 void tb_world_destroy(tb_world* w)
 {
     /* Within a step (a plugin's contact callback) the library is still using the world. */
     if (w && w->in_callbacks) {
-        tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_destroy cannot be called from "
-                "a plugin's contact callback, within a step: the world was kept");
+        tb_api_refuse_in_callbacks(w, "tb_world_destroy");
         return;
     }
     tb_world_free(w);
@@ -139,9 +146,7 @@ tb_solver_kind tb_world_get_solver(const tb_world* w, uint32_t* iterations)
 tb_result tb_world_step_n(tb_world* w, float dt, uint32_t n)
 {
     if (!w) return TB_ERROR_INVALID_ARGUMENT;
-    if (w->in_callbacks)
-        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "the world cannot be stepped from "
-                       "a plugin's contact callback, within its step");
+    if (w->in_callbacks) return tb_api_refuse_in_callbacks(w, "tb_world_step");
     if (!isfinite(dt) || dt <= 0)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "dt must be finite and > 0, not %g",
                        (double)dt);
@@ -164,9 +169,7 @@ tb_result tb_world_snapshot(tb_world* w, void* out, size_t capacity, size_t* siz
     if (!out && capacity)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_snapshot: out is NULL "
                        "with a capacity of %zu", capacity);
-    if (w->in_callbacks)
-        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_snapshot cannot be "
-                       "called from a plugin's contact callback, within a step");
+    if (w->in_callbacks) return tb_api_refuse_in_callbacks(w, "tb_world_snapshot");
     return tb_world_save(w, out, capacity, size);
 }
 
@@ -176,9 +179,7 @@ tb_result tb_world_restore(tb_world* w, const void* snapshot, size_t size)
     if (!snapshot)
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_restore: snapshot is "
                        "NULL");
-    if (w->in_callbacks)
-        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "tb_world_restore cannot be "
-                       "called from a plugin's contact callback, within a step");
+    if (w->in_callbacks) return tb_api_refuse_in_callbacks(w, "tb_world_restore");
     return tb_world_load(w, snapshot, size);
 }
 

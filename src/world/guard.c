@@ -21,10 +21,11 @@ tb_result tb_world_guard_check(tb_world* w, const tb_gpu_counters* c)
         if (!b->alive || b->isolated || !(info[slot].y & TB_BODY_FLAG_ISOLATED)) continue;
         b->isolated = 1;
         w->isolated_bodies++;
+        tb_body_id id = tb_body_id_of_slot(w, slot);
         tb_log(&w->diag, TB_LOG_WARNING, "body {%u, %u, %u} isolated by step %llu: its pose "
                "or velocity stopped being finite; it keeps its last finite pose and no longer "
-               "moves or collides (tb_world_isolated_bodies)", slot + 1, w->serial,
-               b->generation, (unsigned long long)w->gpu_steps);
+               "moves or collides (tb_world_isolated_bodies)", id.index1, id.world,
+               id.generation, (unsigned long long)w->gpu_steps);
     }
     return TB_OK;
 }
@@ -35,7 +36,7 @@ uint32_t tb_world_isolated(const tb_world* w, tb_body_id* out, uint32_t capacity
     for (uint32_t slot = 0; slot < w->body_slots.used && n < w->isolated_bodies; slot++) {
         const tb_body_record* b = &w->bodies[slot];
         if (!b->alive || !b->isolated) continue;
-        if (out && n < capacity) out[n] = (tb_body_id){ slot + 1, w->serial, b->generation };
+        if (out && n < capacity) out[n] = tb_body_id_of_slot(w, slot);
         n++;
     }
     return n;
