@@ -10,9 +10,11 @@
  *
  * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
  * interval, the GPU ms of its last step, bodies whose pose or velocity is not finite,
- * bodies the guard isolated, the kinetic and potential energy of the dynamic bodies (J; potential against gravity from
- * y = 0), the fastest body, the process's resident memory and the GPU buffers' capacities
- * and growths. At the end: whether anything stopped being finite, how much the total energy
+ * bodies the guard isolated, the kinetic and potential energy of the dynamic bodies (J;
+ * potential against gravity from y = 0), the fastest body, how far the bodies have slid
+ * across gravity since this run's first line (mean and most, mm: a settled pile's creep),
+ * the process's resident memory, the pairs, contact points and colours, and the GPU
+ * buffers' capacities and growths. At the end: whether anything stopped being finite, how much the total energy
  * moved over the second half of the run, and how much the resident memory grew after the
  * first interval. Exits 1 when a body stopped being finite or a step failed. */
 #include <math.h>
@@ -37,6 +39,7 @@ typedef struct options {
 typedef struct sample {
     uint32_t non_finite, isolated;
     double kinetic, potential, fastest;
+    double slide_mean, slide_max;   /* sideways (across gravity) since the first line, m */
 } sample;
 
 static double now_ms(void)
@@ -59,11 +62,27 @@ static double resident_mb(void)
 
 static int finite3(tb_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
-/* The figures of every body in ids. */
-static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* out)
+/* How far p has moved from `from` across gravity g (sideways on a level floor), m. */
+static double sideways(tb_vec3 p, tb_vec3 from, tb_vec3 g)
+{
+    vec3 d = { p.x - from.x, p.y - from.y, p.z - from.z }, down = { g.x, g.y, g.z };
+    if (glm_vec3_norm2(down) > 0.0f) {
+        glm_vec3_normalize(down);
+        vec3 along;
+        glm_vec3_scale(down, glm_vec3_dot(d, down), along);
+        glm_vec3_sub(d, along, d);
+    }
+    return glm_vec3_norm(d);
+}
+
+/* The figures of every body in ids; `first` holds each body's position at the first line
+ * (written there, when *have_first is 0). */
+static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, tb_vec3* first,
+                   int* have_first, sample* out)
 {
     memset(out, 0, sizeof *out);
     tb_vec3 g = tb_world_get_gravity(w);
+    uint32_t slid = 0;
     for (uint32_t i = 0; i < count; i++) {
         tb_vec3 p, v, av, inertia;
         tb_quat q;
@@ -75,6 +94,11 @@ static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* o
             out->non_finite++;
             continue;
         }
+        if (!*have_first) first[i] = p;
+        double slide = sideways(p, first[i], g);
+        out->slide_mean += slide;
+        slid++;
+        if (slide > out->slide_max) out->slide_max = slide;
         double speed = sqrt((double)v.x * v.x + (double)v.y * v.y + (double)v.z * v.z);
         if (speed > out->fastest) out->fastest = speed;
         /* Spin energy 1/2 w^T I w with w in the body's principal frame: R^T w. */
@@ -88,6 +112,8 @@ static int measure(tb_world* w, const tb_body_id* ids, uint32_t count, sample* o
         out->kinetic += 0.5 * mass * speed * speed + 0.5 * spin;
         out->potential -= mass * ((double)g.x * p.x + (double)g.y * p.y + (double)g.z * p.z);
     }
+    if (slid) out->slide_mean /= slid;
+    *have_first = 1;
     out->isolated = tb_world_isolated_bodies(w, NULL, 0);
     return 0;
 }
@@ -186,9 +212,12 @@ int main(int argc, char** argv)
     printf("bench-soak: scene %s, %u dynamic bodies, %llu steps of %g s from step %llu, a line "
            "every %u, on %s\n", sc->name, dynamic, (unsigned long long)o.steps, (double)sc->dt,
            (unsigned long long)start.steps, o.every, info.name);
-    printf("%10s %8s %7s %6s %6s %14s %14s %10s %8s %8s %8s %7s %9s %9s %7s\n", "steps",
-           "ms/step", "gpu ms", "nan", "isol", "kinetic J", "potential J", "fastest", "RSS MB",
-           "pairs", "points", "colours", "bodies", "pair cap", "grown");
+    printf("%10s %8s %7s %6s %6s %14s %14s %10s %9s %9s %8s %8s %8s %7s %9s %9s %7s\n",
+           "steps", "ms/step", "gpu ms", "nan", "isol", "kinetic J", "potential J", "fastest",
+           "slide mm", "max mm", "RSS MB", "pairs", "points", "colours", "bodies", "pair cap",
+           "grown");
+    tb_vec3* first = malloc((dynamic ? dynamic : 1) * sizeof *first);
+    int have_first = 0;
     double first_rss = 0, mid_energy = 0, last_energy = 0;
     int bad = 0;
     for (uint64_t done = 0; done < o.steps && !bad;) {
@@ -199,7 +228,7 @@ int main(int argc, char** argv)
         done += k;
         sample s;
         tb_world_stats st;
-        if (r || measure(w, ids, dynamic, &s) || tb_world_get_stats(w, &st)) {
+        if (r || measure(w, ids, dynamic, first, &have_first, &s) || tb_world_get_stats(w, &st)) {
             fprintf(stderr, "bench-soak: %s\n", tb_world_last_error(w));
             bad = 1;
             break;
@@ -209,9 +238,10 @@ int main(int argc, char** argv)
         double energy = s.kinetic + s.potential;
         if (done <= o.steps / 2 || mid_energy == 0) mid_energy = energy;
         last_energy = energy;
-        printf("%10llu %8.3f %7.3f %6u %6u %14.2f %14.2f %10.4f %8.1f %8u %8u %7u %9u %9u %7llu\n",
+        printf("%10llu %8.3f %7.3f %6u %6u %14.2f %14.2f %10.4f %9.4f %9.4f %8.1f %8u %8u %7u "
+               "%9u %9u %7llu\n",
                (unsigned long long)st.steps, ms, st.gpu_ms, s.non_finite, s.isolated, s.kinetic,
-               s.potential, s.fastest, rss, st.pair_count, st.contact_count, st.colour_count,
+               s.potential, s.fastest, 1e3 * s.slide_mean, 1e3 * s.slide_max, rss, st.pair_count, st.contact_count, st.colour_count,
                st.body_capacity, st.pair_capacity, (unsigned long long)st.buffer_growths);
         fflush(stdout);
         if (s.non_finite) bad = 1;
@@ -226,5 +256,6 @@ int main(int argc, char** argv)
     sc->destroy(inst);
     tb_world_destroy(w);
     free(ids);
+    free(first);
     return bad;
 }
