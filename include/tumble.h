@@ -253,7 +253,8 @@ TB_API tb_solver_kind tb_world_get_solver(const tb_world* world, uint32_t* itera
 /// the GPU has finished the step. dt must be finite and > 0.
 TB_API tb_result tb_world_step(tb_world* world, float dt);
 
-/// Advance n steps of dt in one queue submission. Equal to n calls of tb_world_step;
+/// Advance n steps of dt, in one queue submission for every 4096 of them (one for n <= 4096).
+/// Equal to n calls of tb_world_step;
 /// n = 0 does nothing and returns TB_OK.
 TB_API tb_result tb_world_step_n(tb_world* world, float dt, uint32_t n);
 

@@ -151,6 +151,32 @@ static void test_step_n_equals_steps(void** state)
     th_world_destroy(b);
 }
 
+/* tb_world_step_n's steps go in batches of 4096 a submission (a submission lists every
+ * step's command buffer: 2^32 steps asked for 32 GiB of them); TUMBLE_STEPS_PER_SUBMIT=4
+ * makes the batches small enough to see here. 10 steps: three submissions, and the same
+ * state as one submission of 10. */
+static void test_step_n_in_batches(void** state)
+{
+    (void)state;
+    enum { N = 20 };
+    tb_body_id ia[N], ib[N];
+    tb_world* a = th_world_create(NULL);
+    setenv("TUMBLE_STEPS_PER_SUBMIT", "4", 1);
+    tb_world* b = th_world_create(NULL);
+    unsetenv("TUMBLE_STEPS_PER_SUBMIT");
+    build_mixed(a, N, 5, ia);
+    build_mixed(b, N, 5, ib);
+    tb_world_stats before = th_stats(b);
+    th_assert_ok(tb_world_step_n(a, DT, 10));
+    th_assert_ok(tb_world_step_n(b, DT, 10));
+    assert_same_state(a, ia, b, ib, N);
+    tb_world_stats after = th_stats(b);
+    assert_int_equal(after.steps - before.steps, 10);
+    assert_int_equal(after.submits - before.submits, 3);
+    th_world_destroy(a);
+    th_world_destroy(b);
+}
+
 /* ---- adding bodies: no re-record within capacity, growth keeps state --------------------- */
 
 typedef struct faller {
@@ -394,6 +420,7 @@ int main(void)
         cmocka_unit_test(test_determinism_mixed),
         cmocka_unit_test(test_determinism_freefall_scene),
         cmocka_unit_test(test_step_n_equals_steps),
+        cmocka_unit_test(test_step_n_in_batches),
         cmocka_unit_test(test_growth_and_records),
         cmocka_unit_test(test_slot_reuse),
         cmocka_unit_test(test_stats),

@@ -11,6 +11,10 @@
                                  many sweeps, where the soft step's colours have batches */
 #define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
 #define MAX_REDO 16
+/* Steps in one submission at the most: tb_world_step_n's n steps go in batches of this
+ * many (a submission lists each step's command buffer). TUMBLE_STEPS_PER_SUBMIT=N (1 to
+ * this) makes a world's batches smaller, so a test can see them in a few steps. */
+#define MAX_STEPS_PER_SUBMIT 4096u
 
 /* Per-body dispatches cover the slots in use; rows of groups keep x within the device limit. */
 static void write_params(tb_world* w, float dt)
@@ -185,8 +189,15 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     tb_body_store_stepped(&w->store);
     w->submits++;
     const tb_gpu_counters* c = tb_sim_counters(&w->sim);
-    *done = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
-    w->gpu_steps += *done;
+    uint32_t completed = (uint32_t)(c->state.y - (uint32_t)w->gpu_steps);
+    /* More than were submitted: the GPU's count and the host's disagree (a bug); taken as it
+     * is, the caller's count of steps to go would wrap around. */
+    if (completed > n)
+        return tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU counts %u steps done of the %u "
+                       "submitted (its count %u, the host's %llu)", completed, n, c->state.y,
+                       (unsigned long long)w->gpu_steps);
+    *done = completed;
+    w->gpu_steps += completed;
     r = tb_events_deliver(w, c);
     if (!r) r = tb_world_guard_check(w, c);
     if (!r && c->state.x) r = grow_for(w, c);
@@ -197,18 +208,27 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     return r;
 }
 
+uint32_t tb_world_steps_per_submit(void)
+{
+    const char* v = getenv("TUMBLE_STEPS_PER_SUBMIT");
+    long n = v ? strtol(v, NULL, 10) : 0;
+    return n >= 1 && n <= (long)MAX_STEPS_PER_SUBMIT ? (uint32_t)n : MAX_STEPS_PER_SUBMIT;
+}
+
 tb_result tb_world_run(tb_world* w, float dt, uint32_t n)
 {
     uint32_t left = n, redo = 0;
     while (left > 0) {
-        uint32_t done = 0;
-        tb_result r = run_steps(w, dt, left, &done);
+        uint32_t done = 0, batch = left < w->steps_per_submit ? left : w->steps_per_submit;
+        tb_result r = run_steps(w, dt, batch, &done);
         w->steps += done;
         left -= done;
         if (r) return r;
-        if (left == 0) break;
+        if (left == 0 || done == batch) continue;
+        /* Step `done` + 1 of the batch overflowed: it runs again once its buffers grew. */
         w->steps_redone++;
-        if (++redo > MAX_REDO)
+        redo = done ? 1 : redo + 1;
+        if (redo > MAX_REDO)
             return tb_fail(&w->diag, TB_ERROR_CAPACITY, "a step still overflowed after %d "
                            "buffer growths", MAX_REDO);
     }

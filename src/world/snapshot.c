@@ -27,14 +27,16 @@
 #include "world/world.h"
 
 #define SNAPSHOT_MAGIC "TUMBSNAP"
-#define SNAPSHOT_VERSION 1u
+/* 2: the checksum covers the header too (a flipped step count in it was restored, and the
+ * next step's count of completed steps wrapped around). */
+#define SNAPSHOT_VERSION 2u
 
 typedef struct snapshot_header {
     char magic[8];
     uint32_t version;
     uint32_t header_bytes;        ///< sizeof(snapshot_header)
     uint64_t total_bytes;
-    uint64_t checksum;            ///< FNV-1a of everything after the header
+    uint64_t checksum;            ///< FNV-1a of the header (this field 0) and all after it
     uint64_t shapes;              ///< the shapes' fingerprint (shape_fingerprint)
     uint64_t gpu_steps, steps;
     uint32_t record_bytes, manifold_bytes, counters_bytes;   ///< this build's struct sizes
@@ -93,6 +95,16 @@ static uint64_t fnv1a(uint64_t h, const void* data, size_t size)
     const unsigned char* p = data;
     for (size_t i = 0; i < size; i++) h = (h ^ p[i]) * 0x100000001b3ull;
     return h;
+}
+
+/* The checksum of a snapshot of `size` bytes whose header is h: its header with the checksum
+ * field 0, then the bytes after the header. */
+static uint64_t checksum_of(const snapshot_header* h, const void* data, size_t size)
+{
+    snapshot_header zeroed = *h;
+    zeroed.checksum = 0;
+    uint64_t sum = fnv1a(0xcbf29ce484222325ull, &zeroed, sizeof zeroed);
+    return fnv1a(sum, (const unsigned char*)data + sizeof *h, size - sizeof *h);
 }
 
 /* The shapes as the step sees them: each slot's life and generation, and its GPU entry
@@ -234,7 +246,7 @@ tb_result tb_world_save(tb_world* w, void* out, size_t capacity, size_t* size)
     copy_bytes(bytes + s[SEC_RECORDS].offset, w->bodies, s[SEC_RECORDS].bytes);
     for (int a = 0; a < TB_ARRAY_COUNT; a++)
         copy_bytes(bytes + s[SEC_ARRAYS + a].offset, w->store.host[a], s[SEC_ARRAYS + a].bytes);
-    h.checksum = fnv1a(0xcbf29ce484222325ull, bytes + sizeof h, h.total_bytes - sizeof h);
+    h.checksum = checksum_of(&h, bytes, h.total_bytes);
     memcpy(bytes, &h, sizeof h);
     return TB_OK;
 }
@@ -252,8 +264,7 @@ static const char* refusal(const tb_world* w, const snapshot_header* h, const vo
         return "the snapshot was made by another version or build of Tumble";
     if (h->total_bytes != size || total_bytes(h) != size)
         return "the snapshot's size does not match its contents (cut short or damaged)";
-    if (fnv1a(0xcbf29ce484222325ull, (const unsigned char*)data + sizeof *h, size - sizeof *h) !=
-        h->checksum)
+    if (checksum_of(h, data, size) != h->checksum)
         return "the snapshot's checksum does not match its contents (damaged)";
     if (h->shapes != shape_fingerprint(w))
         return "the world's shapes differ from the snapshot's (make the same shapes in the "
@@ -269,7 +280,8 @@ static const char* refusal(const tb_world* w, const snapshot_header* h, const vo
         return "the snapshot was taken with another solver or other solver settings";
     if (h->slots_live > h->slots_used || h->free_count > h->slots_used ||
         h->store_slots < h->slots_used || h->pairs > tb_sim_pair_limit(&w->sim) ||
-        h->colour_rounds > TB_MAX_COLOURS)
+        h->colour_rounds > TB_MAX_COLOURS || h->steps != h->gpu_steps ||
+        (h->block_lanes != 8 && h->block_lanes != 16 && h->block_lanes != 32))
         return "the snapshot's counts are out of range (damaged)";
     return NULL;
 }

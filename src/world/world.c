@@ -91,6 +91,7 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->broadphase = tb_broadphase_ops_of(broadphase);
     w->colour_rounds = INITIAL_COLOUR_ROUNDS;
     w->block_lanes = 8;
+    w->steps_per_submit = tb_world_steps_per_submit();
     /* TUMBLE_BLOCK_LANES=8, 16 or 32 holds the block solver's sweeps at that many lanes a
      * body instead of choosing (to measure them, and to run the wide sweeps on lavapipe). */
     const char* lanes = getenv("TUMBLE_BLOCK_LANES");

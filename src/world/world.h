@@ -102,6 +102,7 @@ struct tb_world {
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
     uint32_t block_lanes;        ///< lanes a body in the block solver's sweeps (tb_block_lanes_for)
     int block_lanes_fixed;       ///< block_lanes set by TUMBLE_BLOCK_LANES, not chosen
+    uint32_t steps_per_submit;   ///< tb_world_step_n's batches (run.c; TUMBLE_STEPS_PER_SUBMIT)
     uint32_t substeps, solver_iterations;
     float contact_margin, restitution_threshold;
     float contact_hertz, contact_damping_ratio, contact_push_speed;
@@ -176,6 +177,8 @@ tb_result tb_world_use_solver(tb_world* w, int block, uint32_t iterations);
 /* run.c: submitting steps, growing what overflowed and running the step again. */
 /// Run n steps of dt (checked), redoing any step a buffer overflowed in.
 tb_result tb_world_run(tb_world* w, float dt, uint32_t n);
+/// The steps a submission holds at the most (4096, or TUMBLE_STEPS_PER_SUBMIT's fewer).
+uint32_t tb_world_steps_per_submit(void);
 /// Upload what the host wrote and the GPU has not seen yet.
 tb_result tb_world_flush(tb_world* w);
 /// Bring the arrays in `mask` of the body mirror up to date (uploading first what is dirty).

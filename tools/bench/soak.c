@@ -8,7 +8,7 @@
  * --restore starts from one (the same scene and N); the step numbers then go on from the
  * snapshot's, and TOTAL counts the steps of this piece.
  *
- * Every K steps (one submission of K steps) a line: steps so far, wall ms a step over the
+ * Every K steps (one tb_world_step_n of K steps) a line: steps so far, wall ms a step over the
  * interval, the GPU ms of its last step, bodies whose pose or velocity is not finite,
  * bodies the guard isolated, the kinetic and potential energy of the dynamic bodies (J;
  * potential against gravity from y = 0), the fastest body, how far the bodies have slid
