@@ -218,7 +218,6 @@ static int crowd_on_cpu;   /* crowd_after's world ran on a CPU device */
 /* The centres of n spheres of radius 0.5 started within 1 cm of the origin without gravity,
  * after `steps` steps with the block solver; the stats of the first step, and the slowest
  * ball's speed after it. */
-
 static void crowd_after(uint32_t n, uint32_t steps, tb_vec3* at, tb_world_stats* stats,
                         double* slowest)
 {

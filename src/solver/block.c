@@ -39,6 +39,7 @@ static const tb_pipeline_slot wide_kernels[] = {
     { "block/solve_16", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_16) },
     { "block/solve_32", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_32) },
 };
+#define WIDE_KERNEL_COUNT (sizeof wide_kernels / sizeof wide_kernels[0])
 
 tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines)
 {
@@ -62,7 +63,7 @@ void tb_block_destroy(tb_block_solver* s)
 {
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
-    tb_pipeline_destroy_slots(s->pipelines, wide_kernels, 2, s);
+    tb_pipeline_destroy_slots(s->pipelines, wide_kernels, WIDE_KERNEL_COUNT, s);
     if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
     memset(s, 0, sizeof *s);
 }

@@ -39,10 +39,9 @@ tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines)
 
 tb_result tb_solver_prepare_soft_step(tb_solver* s)
 {
-    if (s->soft_step_ready) return TB_OK;
-    tb_result r = tb_pipeline_create_slots(s->pipelines, soft_kernels, SOFT_KERNEL_COUNT, s);
-    if (!r) s->soft_step_ready = 1;
-    return r;
+    /* The slots are made all or none (tb_pipeline_create_slots), so one stands for all. */
+    if (s->solve) return TB_OK;
+    return tb_pipeline_create_slots(s->pipelines, soft_kernels, SOFT_KERNEL_COUNT, s);
 }
 
 void tb_solver_destroy(tb_solver* s)

@@ -27,7 +27,6 @@ typedef struct tb_solver {
     tb_pipelines* pipelines;
     VkPipeline colour_claim, colour_decide, colour_finish, prepare, solve, solve_tail, substep;
     VkPipeline tail_list, apply_forces, integrate;
-    int soft_step_ready;   ///< the soft step's own pipelines are made (tb_solver_prepare_soft_step)
 } tb_solver;
 
 /// What listing the tail's constraints needs: the colour work lists (2 x pair capacity
@@ -39,9 +38,10 @@ typedef struct tb_solver_tail {
     uint32_t pair_capacity;
 } tb_solver_tail;
 
-/// Build the pipelines both solvers use (the free motion, the integration).
+/// Build the pipelines both solvers use (the constraints' preparation, the free motion, the
+/// integration).
 tb_result tb_solver_init(tb_solver* s, tb_pipelines* pipelines);
-/// Build the soft step's own pipelines (colouring, prepare, solve), once: a world makes them
+/// Build the soft step's own pipelines (colouring, solve, tail), once: a world makes them
 /// when it first steps with the soft step.
 tb_result tb_solver_prepare_soft_step(tb_solver* s);
 void tb_solver_destroy(tb_solver* s);
