@@ -179,8 +179,10 @@ static void test_incline_slides_above_atan_mu(void** state)
 
 typedef struct pile_result { tb_vec3* pos; tb_quat* rot; uint32_t n; } pile_result;
 
-/* 1000 spheres poured into the bench's container, settled for `steps`. */
-static pile_result pour_spheres(uint32_t steps)
+/* 1000 spheres poured into the bench's container: their poses after `first` steps; then,
+ * when `settle` is not 0, `settle` steps more and the scene's checks (no NaN, none
+ * escaped, less than 1 cm of penetration). */
+static pile_result pour_spheres(uint32_t first, uint32_t settle)
 {
     tb_world* w = world_with_gravity();
     const scene* sc = scene_find("spheres");
@@ -188,34 +190,39 @@ static pile_result pour_spheres(uint32_t steps)
     scene_params params = { 1000, 1 };
     scene_instance* inst = NULL;
     th_assert_ok(sc->build(w, &params, &inst));
-    th_assert_ok(tb_world_step_n(w, sc->dt, steps));
-    scene_checks checks = { 0 };
-    th_assert_ok(sc->check(w, inst, steps, sc->dt, &checks));
-    for (uint32_t i = 0; i < checks.count; i++) {
-        const char* k = checks.items[i].key;
-        double v = checks.items[i].value;
-        print_message("  %s %g\n", k, v);
-        if (!strcmp(k, "nan") || !strcmp(k, "escaped")) assert_true(v == 0);
-        if (!strcmp(k, "max_penetration")) assert_true(v < 0.01);
-    }
+    th_assert_ok(tb_world_step_n(w, sc->dt, first));
     pile_result r;
     const tb_body_id* ids = scene_body_ids(inst, &r.n);
     r.pos = calloc(r.n, sizeof *r.pos);
     r.rot = calloc(r.n, sizeof *r.rot);
     th_assert_ok(tb_world_read_transforms(w, ids, r.n, r.pos, r.rot));
+    if (settle) {
+        th_assert_ok(tb_world_step_n(w, sc->dt, settle));
+        scene_checks checks = { 0 };
+        th_assert_ok(sc->check(w, inst, first + settle, sc->dt, &checks));
+        for (uint32_t i = 0; i < checks.count; i++) {
+            const char* k = checks.items[i].key;
+            double v = checks.items[i].value;
+            print_message("  %s %g\n", k, v);
+            if (!strcmp(k, "nan") || !strcmp(k, "escaped")) assert_true(v == 0);
+            if (!strcmp(k, "max_penetration")) assert_true(v < 0.01);
+        }
+    }
     sc->destroy(inst);
     th_world_destroy(w);
     return r;
 }
 
-/* 1000 spheres poured into a box: no NaN, no escape, max penetration < 1 cm once settled;
- * the same run twice is bit-identical. */
+/* 1000 spheres poured into a box: no NaN, no escape, max penetration < 1 cm once settled
+ * (420 steps); the same pour twice is bit-identical through its first 150 steps, where
+ * they fall, land and pile up (after 150 steps of 1000 colliding spheres any difference
+ * in any step has long spread; test_golden follows a pile of every shape to its end). */
 static void test_pour_spheres_settles_deterministically(void** state)
 {
     (void)state;
     if (!th_large_scene_runs("the sphere pour", "256")) skip();
-    pile_result a = pour_spheres(420);
-    pile_result b = pour_spheres(420);
+    pile_result a = pour_spheres(150, 270);
+    pile_result b = pour_spheres(150, 0);
     assert_int_equal(a.n, b.n);
     assert_memory_equal(a.pos, b.pos, a.n * sizeof *a.pos);
     assert_memory_equal(a.rot, b.rot, a.n * sizeof *a.rot);

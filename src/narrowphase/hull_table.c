@@ -196,14 +196,10 @@ void tb_hull_table_record_upload(tb_narrowphase* np, tb_transfer* transfer)
 tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced)
 {
     np->kit = *kit;
-    tb_pipelines* p = kit->pipelines;
-    tb_result r = tb_pipeline_create(p, "narrowphase/contacts", TB_WORKGROUP_SIZE, &np->contacts);
-    if (!r) r = tb_pipeline_create(p, "narrowphase/hull_sat", TB_WIDE_WORKGROUP_SIZE,
-                                   &np->hull_sat);
-    if (!r) r = tb_pipeline_create(p, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
-                                   &np->hull_points);
-    if (!r) r = hull_table_init(np, replaced);
-    return r;
+    /* The kernels are made when a step is first recorded (the hull pairs' when it is with
+     * hulls): narrowphase/contacts is the longest of all to compile (on lavapipe a third
+     * of a world's creation), and a world that never steps never needs it. */
+    return hull_table_init(np, replaced);
 }
 
 void tb_narrowphase_destroy(tb_narrowphase* np)
@@ -243,25 +239,38 @@ static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeli
     return per_pair_at(np, list, pipeline, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET);
 }
 
-tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
+tb_result tb_narrowphase_record_contacts(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters, int listed)
 {
+    tb_result r = TB_OK;
+    if (!np->contacts)
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/contacts", TB_WORKGROUP_SIZE,
+                               &np->contacts);
     /* args.x 1: over the pairs of its kinds that round_order listed. */
-    return per_pair_with(np, list, np->contacts, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
-                         listed ? 1u : 0u);
+    return r ? r : per_pair_with(np, list, np->contacts, counters,
+                                 TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u);
 }
 
-tb_result tb_narrowphase_record_hull_sat(const tb_narrowphase* np, tb_pass_list* list,
+tb_result tb_narrowphase_record_hull_sat(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters)
 {
-    return per_pair_at(np, list, np->hull_sat, counters, TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
+    tb_result r = TB_OK;
+    if (!np->hull_sat)
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/hull_sat", TB_WIDE_WORKGROUP_SIZE,
+                               &np->hull_sat);
+    return r ? r : per_pair_at(np, list, np->hull_sat, counters,
+                               TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
 
-tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
+tb_result tb_narrowphase_record_hull_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters, int listed)
 {
-    return per_pair_with(np, list, np->hull_points, counters, TB_COUNTERS_PAIR_DISPATCH_OFFSET,
-                         listed ? 1u : 0u);
+    tb_result r = TB_OK;
+    if (!np->hull_points)
+        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
+                               &np->hull_points);
+    return r ? r : per_pair_with(np, list, np->hull_points, counters,
+                                 TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u);
 }
 
 tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* list,

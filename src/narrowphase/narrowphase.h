@@ -68,22 +68,24 @@ typedef struct tb_hull_shapes {
     tb_gpu_shape* gpu_shapes;
 } tb_hull_shapes;
 
-/// Pipelines and the first hull buffers (bound). *replaced: buffers were bound.
+/// The first hull buffers (bound; the pipelines are made as the step is first recorded).
+/// *replaced: buffers were bound.
 tb_result tb_narrowphase_init(tb_narrowphase* np, const tb_gpu_kit* kit, int* replaced);
 void tb_narrowphase_destroy(tb_narrowphase* np);
 
 /// narrowphase/contacts; `counters` is the buffer bound at TB_BIND_COUNTERS. With `listed`
 /// (while round shapes live, after round_cull) over the pairs round_order listed for it,
-/// otherwise over every pair.
-tb_result tb_narrowphase_record_contacts(const tb_narrowphase* np, tb_pass_list* list,
+/// otherwise over every pair. Its pipeline is made the first time.
+tb_result tb_narrowphase_record_contacts(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters, int listed);
 /// narrowphase/hull_sat, the separating axis test of the hull pairs contacts listed
-/// (recorded only while the world has hull shapes, between contacts and hull_points).
-tb_result tb_narrowphase_record_hull_sat(const tb_narrowphase* np, tb_pass_list* list,
+/// (recorded only while the world has hull shapes, between contacts and hull_points; its
+/// pipeline is made the first time, as hull_points's).
+tb_result tb_narrowphase_record_hull_sat(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters);
 /// narrowphase/hull_points, the points of the touching hull pairs (recorded only while the
 /// world has hull shapes); `listed` as for contacts.
-tb_result tb_narrowphase_record_hull_points(const tb_narrowphase* np, tb_pass_list* list,
+tb_result tb_narrowphase_record_hull_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters, int listed);
 /// narrowphase/mesh_points and mesh_reduce, the points of the mesh pairs (recorded only
 /// while the world has mesh shapes; their pipelines are made the first time).

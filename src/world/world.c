@@ -67,7 +67,8 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     if (!r) r = w->broadphase->create(&w->bp);
     tb_step_broadphase_io(w);
     if (!r) r = w->broadphase->reserve(&w->bp, w->store.capacity);
-    if (!r) r = tb_step_build(w);
+    /* The step is recorded by the first tb_world_step (run.c), which makes the pipelines
+     * only a stepping world needs (narrowphase/contacts among them). */
     return r;
 }
 
