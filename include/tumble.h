@@ -314,7 +314,7 @@ typedef struct tb_world_stats {
     uint32_t colour_rounds;       ///< colouring rounds recorded in the step
     uint64_t steps_redone;        ///< steps run again after a GPU buffer grew
     const char* broadphase;       ///< the broadphase in use: "grid", "sap", "lbvh" or "isap"
-    uint32_t stage_count;
+    uint32_t stage_count;         ///< the step's stages below, in order; none before the first step
     tb_stage_time stages[TB_MAX_STAGES];
 } tb_world_stats;
 
