@@ -27,15 +27,17 @@ static const tb_pipeline_slot kernels[] = {
     { "block/finish", TB_MAX_COLOURS, offsetof(tb_block_solver, finish) },
     { "block/start", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, start) },
     { "block/guess", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, guess) },
-    { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
     { "block/end", TB_WORKGROUP_SIZE, offsetof(tb_block_solver, end) },
     { "block/bounce", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, bounce) },
 };
 #define KERNEL_COUNT (sizeof kernels / sizeof kernels[0])
 
-/* The sweeps with 16 and 32 lanes a body, made when a world first wants them
- * (tb_block_prepare_lanes). */
+/* The sweeps with 8, 16 and 32 lanes a body, made when a world first wants them
+ * (tb_block_prepare_lanes, as its step is first recorded): block/solve is among the
+ * longest kernels to compile (82 ms of a world's 0.49 s of compiles on lavapipe), and a
+ * world that never steps never needs it. */
 static const tb_pipeline_slot wide_kernels[] = {
+    { "block/solve", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve) },
     { "block/solve_16", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_16) },
     { "block/solve_32", TB_SOLVER_WORKGROUP_SIZE, offsetof(tb_block_solver, solve_32) },
 };
@@ -88,9 +90,11 @@ static uint32_t lanes_at(double bodies, double entries, double slack)
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes)
 {
     tb_result r = TB_OK;
-    if (lanes >= 16 && !s->solve_16) r = tb_pipeline_create_slots(s->pipelines, wide_kernels, 1, s);
-    if (!r && lanes >= 32 && !s->solve_32)
+    if (!s->solve) r = tb_pipeline_create_slots(s->pipelines, wide_kernels, 1, s);
+    if (!r && lanes >= 16 && !s->solve_16)
         r = tb_pipeline_create_slots(s->pipelines, wide_kernels + 1, 1, s);
+    if (!r && lanes >= 32 && !s->solve_32)
+        r = tb_pipeline_create_slots(s->pipelines, wide_kernels + 2, 1, s);
     return r;
 }
 

@@ -76,7 +76,8 @@ void tb_block_destroy(tb_block_solver* s);
 /// colours only the bodies that beat their uncoloured neighbours.
 uint32_t tb_block_colouring_rounds(uint32_t colours);
 
-/// Make the sweep with `lanes` lanes a body (8: always there; 16 and 32: made on first use).
+/// Make the sweep with `lanes` lanes a body, and the 8-lane one the first time (each is made
+/// on first use, as the step is recorded).
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
 
 /// The lanes a body for the sweeps (8, 16 or 32; a GPU whose subgroup is narrower, or a CPU
