@@ -206,6 +206,12 @@ tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workg
     return create_with_source(p, shader, NULL, NULL, workgroup_size, out);
 }
 
+tb_result tb_pipeline_create_once(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
+                                  VkPipeline* out)
+{
+    return *out ? TB_OK : tb_pipeline_create(p, shader, workgroup_size, out);
+}
+
 tb_result tb_pipeline_create_glsl(tb_pipelines* p, const char* name, const char* path,
                                   tb_spirv_check* check, uint32_t workgroup_size,
                                   VkPipeline* out)

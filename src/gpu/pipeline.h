@@ -56,6 +56,9 @@ void tb_pipelines_destroy(tb_pipelines* p);
 /// its owner keeps it: embedded SPIR-V, or with a shader directory its GLSL there.
 tb_result tb_pipeline_create(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
                              VkPipeline* out);
+/// The same for a pipeline made on first use: nothing when *out is already made.
+tb_result tb_pipeline_create_once(tb_pipelines* p, const char* shader, uint32_t workgroup_size,
+                                  VkPipeline* out);
 /// Build a compute pipeline from the GLSL file at `path`, its SPIR-V passed by `check`
 /// (may be NULL) first; `name` names it in errors. Hot-reload rebuilds it too.
 tb_result tb_pipeline_create_glsl(tb_pipelines* p, const char* name, const char* path,

@@ -242,10 +242,8 @@ static tb_result per_pair(const tb_narrowphase* np, tb_pass_list* list, VkPipeli
 tb_result tb_narrowphase_record_contacts(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters, int listed)
 {
-    tb_result r = TB_OK;
-    if (!np->contacts)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/contacts", TB_WORKGROUP_SIZE,
-                               &np->contacts);
+    tb_result r = tb_pipeline_create_once(np->kit.pipelines, "narrowphase/contacts",
+                                          TB_WORKGROUP_SIZE, &np->contacts);
     /* args.x 1: over the pairs of its kinds that round_order listed. */
     return r ? r : per_pair_with(np, list, np->contacts, counters,
                                  TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u);
@@ -254,10 +252,8 @@ tb_result tb_narrowphase_record_contacts(tb_narrowphase* np, tb_pass_list* list,
 tb_result tb_narrowphase_record_hull_sat(tb_narrowphase* np, tb_pass_list* list,
                                          VkBuffer counters)
 {
-    tb_result r = TB_OK;
-    if (!np->hull_sat)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/hull_sat", TB_WIDE_WORKGROUP_SIZE,
-                               &np->hull_sat);
+    tb_result r = tb_pipeline_create_once(np->kit.pipelines, "narrowphase/hull_sat",
+                                          TB_WIDE_WORKGROUP_SIZE, &np->hull_sat);
     return r ? r : per_pair_at(np, list, np->hull_sat, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
@@ -265,10 +261,8 @@ tb_result tb_narrowphase_record_hull_sat(tb_narrowphase* np, tb_pass_list* list,
 tb_result tb_narrowphase_record_hull_points(tb_narrowphase* np, tb_pass_list* list,
                                             VkBuffer counters, int listed)
 {
-    tb_result r = TB_OK;
-    if (!np->hull_points)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/hull_points", TB_WORKGROUP_SIZE,
-                               &np->hull_points);
+    tb_result r = tb_pipeline_create_once(np->kit.pipelines, "narrowphase/hull_points",
+                                          TB_WORKGROUP_SIZE, &np->hull_points);
     return r ? r : per_pair_with(np, list, np->hull_points, counters,
                                  TB_COUNTERS_PAIR_DISPATCH_OFFSET, listed ? 1u : 0u);
 }
@@ -277,11 +271,10 @@ tb_result tb_narrowphase_record_mesh_points(tb_narrowphase* np, tb_pass_list* li
                                             VkBuffer counters)
 {
     tb_pipelines* p = np->kit.pipelines;
-    tb_result r = TB_OK;
-    if (!np->mesh_points)
-        r = tb_pipeline_create(p, "narrowphase/mesh_points", TB_WORKGROUP_SIZE, &np->mesh_points);
-    if (!r && !np->mesh_reduce)
-        r = tb_pipeline_create(p, "narrowphase/mesh_reduce", TB_WORKGROUP_SIZE, &np->mesh_reduce);
+    tb_result r = tb_pipeline_create_once(p, "narrowphase/mesh_points", TB_WORKGROUP_SIZE,
+                                          &np->mesh_points);
+    if (!r) r = tb_pipeline_create_once(p, "narrowphase/mesh_reduce", TB_WORKGROUP_SIZE,
+                                        &np->mesh_reduce);
     if (!r) r = per_pair(np, list, np->mesh_points, counters);
     if (!r) r = per_pair(np, list, np->mesh_reduce, counters);
     return r;
@@ -291,13 +284,10 @@ tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* lis
                                            VkBuffer counters)
 {
     tb_pipelines* p = np->kit.pipelines;
-    tb_result r = TB_OK;
-    if (!np->round_order)
-        r = tb_pipeline_create(p, "narrowphase/round_order", TB_WIDE_WORKGROUP_SIZE,
-                               &np->round_order);
-    if (!r && !np->round_cull)
-        r = tb_pipeline_create(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
-                               &np->round_cull);
+    tb_result r = tb_pipeline_create_once(p, "narrowphase/round_order", TB_WIDE_WORKGROUP_SIZE,
+                                          &np->round_order);
+    if (!r) r = tb_pipeline_create_once(p, "narrowphase/round_cull", TB_WIDE_WORKGROUP_SIZE,
+                                        &np->round_cull);
     if (!r) r = per_pair_at(np, list, np->round_cull, counters,
                             TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
     return r ? r : per_pair_at(np, list, np->round_order, counters,
@@ -307,10 +297,8 @@ tb_result tb_narrowphase_record_round_cull(tb_narrowphase* np, tb_pass_list* lis
 tb_result tb_narrowphase_record_round_points(tb_narrowphase* np, tb_pass_list* list,
                                              VkBuffer counters)
 {
-    tb_result r = TB_OK;
-    if (!np->round_points)
-        r = tb_pipeline_create(np->kit.pipelines, "narrowphase/round_points",
-                               TB_WIDE_WORKGROUP_SIZE, &np->round_points);
+    tb_result r = tb_pipeline_create_once(np->kit.pipelines, "narrowphase/round_points",
+                                          TB_WIDE_WORKGROUP_SIZE, &np->round_points);
     return r ? r : per_pair_at(np, list, np->round_points, counters,
                                TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET);
 }
