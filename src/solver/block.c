@@ -9,7 +9,7 @@
 
 tb_block_settings tb_block_default_settings(void)
 {
-    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 0.0f, 1.2f };
+    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 1.0f, 1.2f };
     const char* env = getenv("TUMBLE_BLOCK");
     if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
                     &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry,

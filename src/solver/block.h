@@ -58,10 +58,11 @@ typedef struct tb_block_settings {
     float warm_share;        ///< the share of last step's force a contact starts from
     float stabilisation;     ///< the share of a starting penetration left to later steps
     float stiffness_carry;   ///< the share of last step's stiffness a contact starts from
-    float anchored_friction; ///< 1: friction counts from where a point began to stick; 0
-                             ///< (the default): from where the step began (a sticking load
-                             ///< creeps; anchored, a pile trembles and tall pyramids lean:
-                             ///< docs/performance.md, "Why the pile creeps")
+    float anchored_friction; ///< 1 (the default): friction counts from where a point began
+                             ///< to stick, and its multiplier starts each step from nothing;
+                             ///< 0: from where the step began (a sticking load creeps:
+                             ///< docs/performance.md, "Why the pile creeps"); between: that
+                             ///< share of the slip, the multiplier from the rest
     float over_relaxation;   ///< how far a body moves along its Newton step in a sweep
 } tb_block_settings;
 
