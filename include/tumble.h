@@ -80,7 +80,11 @@ typedef struct tb_body_id { uint32_t index1; uint16_t world; uint16_t generation
 /// Shape id, same scheme as tb_body_id.
 typedef struct tb_shape_id { uint32_t index1; uint16_t world; uint16_t generation; } tb_shape_id;
 
+/// Joint id, same scheme as tb_body_id.
+typedef struct tb_joint_id { uint32_t index1; uint16_t world; uint16_t generation; } tb_joint_id;
+
 static const tb_body_id tb_null_body = { 0, 0, 0 };
+static const tb_joint_id tb_null_joint = { 0, 0, 0 };
 static const tb_shape_id tb_null_shape = { 0, 0, 0 };
 
 /* ---------------------------------------------------------------------------------------
@@ -693,6 +697,112 @@ TB_API uint32_t tb_world_body_ids(const tb_world* world, tb_body_id* out, uint32
 /// many there are.
 TB_API uint32_t tb_world_isolated_bodies(const tb_world* world, tb_body_id* out,
                                          uint32_t capacity);
+
+/* ---------------------------------------------------------------------------------------
+ * Joints
+ *
+ * A joint holds two bodies together: a point of each (the anchors) and, for most kinds, a
+ * frame of each (an orientation in the body's frame whose x axis is a hinge's or slider's
+ * axis). The block solver (the default) solves its rows in the same sweeps as the contacts,
+ * as hard constraints reached by an augmented Lagrangian, so chains with heavy ends keep
+ * their length; worlds that step with the soft step refuse joints. Destroying a body
+ * destroys its joints.
+ */
+/// Most joints a world holds.
+#define TB_MAX_JOINTS 2097152u
+
+typedef enum tb_joint_kind {
+    TB_JOINT_BALL = 1,     ///< spherical: the anchors meet; any rotation
+    TB_JOINT_HINGE = 2,    ///< revolute: the anchors meet and the frames' x axes align;
+                           ///< turning about the axis is free (limit, motor)
+    TB_JOINT_FIXED = 3,    ///< weld: anchors and frames held together
+    TB_JOINT_DISTANCE = 4, ///< the anchors keep `length` apart (a rod), or stay between
+                           ///< lower and upper (a rope: limit on), or are pulled to `length`
+                           ///< by a spring (spring on); any rotation
+    TB_JOINT_SLIDER = 5,   ///< prismatic: frames held, the anchors move apart only along the
+                           ///< frames' x axis (limit in m, motor in m/s)
+    TB_JOINT_KIND_FORCE_32 = 0x7fffffff
+} tb_joint_kind;
+
+typedef struct tb_joint_def {
+    /// Required.
+    tb_joint_kind kind;
+    /// Required, two different bodies of the world, at least one of them dynamic.
+    tb_body_id body_a, body_b;
+    /// The joint's point in each body's frame, m. Default origin (tb_joint_def_at sets
+    /// them from a world point).
+    tb_vec3 anchor_a, anchor_b;
+    /// The joint's frame in each body's frame (unit quaternions within 1e-3, normalised);
+    /// its x axis is the hinge's or slider's axis. Default identity.
+    tb_quat frame_a, frame_b;
+    /// Distance joints: the anchors' distance, m, >= 0. Default 1.
+    float length;
+    /// Limit (hinge: rad, within [-pi, pi]; slider and distance: m), lower <= upper.
+    /// Default off, 0 and 0.
+    int32_t enable_limit;
+    float lower, upper;
+    /// Motor (hinges: target rad/s of b about the axis relative to a, most torque N m;
+    /// sliders: m/s, N). Default off, 0 and 0.
+    int32_t enable_motor;
+    float motor_speed, max_motor_force;
+    /// Distance joints: a spring to `length` instead of a rod, Hz (> 0) and damping ratio
+    /// (>= 0). Default off, 1 Hz, 0.
+    int32_t enable_spring;
+    float spring_hertz, spring_damping_ratio;
+    /// Whether the two bodies collide with each other. Default 0 (they do not).
+    int32_t collide_connected;
+    /// The joint breaks (stops holding; tb_joint_read_forces reports it) once the force
+    /// (N) or torque (N m) it holds passes these. 0: never. Default 0.
+    float break_force, break_torque;
+    /// Returned by tb_joint_get_user_data. Default NULL.
+    void* user_data;
+    /// Internal: set by tb_default_joint_def(). Do not touch.
+    int32_t internal_cookie;
+} tb_joint_def;
+
+TB_API tb_joint_def tb_default_joint_def(void);
+
+/// Sets def's anchors to the world point `point` and its frames so that their x axes lie
+/// along the world direction `axis` (non-zero; normalised), from the bodies' present poses.
+TB_API tb_result tb_joint_def_at(tb_world* world, tb_joint_def* def, tb_vec3 point,
+                                 tb_vec3 axis);
+
+/// Create one joint; it holds from the next step on.
+TB_API tb_result tb_joint_create(tb_world* world, const tb_joint_def* def, tb_joint_id* out);
+/// Create `count` joints in one call (all or none: if any def is bad, none is created and
+/// the error names the first bad index).
+TB_API tb_result tb_joint_create_many(tb_world* world, const tb_joint_def* defs,
+                                      uint32_t count, tb_joint_id* out_ids);
+TB_API tb_result tb_joint_destroy(tb_world* world, tb_joint_id joint);
+TB_API int tb_joint_is_valid(const tb_world* world, tb_joint_id joint);
+TB_API void* tb_joint_get_user_data(const tb_world* world, tb_joint_id joint);
+/// The two bodies of a joint (either pointer may be NULL).
+TB_API tb_result tb_joint_get_bodies(const tb_world* world, tb_joint_id joint,
+                                     tb_body_id* body_a, tb_body_id* body_b);
+
+/// Between steps: the motor's target speed and most force or torque (>= 0), and whether it
+/// is on. Hinges and sliders only.
+TB_API tb_result tb_joint_set_motor(tb_world* world, tb_joint_id joint, int32_t enable,
+                                    float speed, float max_force);
+/// Between steps: the limit and whether it is on (lower <= upper). Hinges, sliders and
+/// distance joints.
+TB_API tb_result tb_joint_set_limit(tb_world* world, tb_joint_id joint, int32_t enable,
+                                    float lower, float upper);
+
+/// What `count` joints held in the last step: the force (N) and torque (N m, about b's
+/// anchor) each applied to its body b, world frame, and whether it has broken (1) (any
+/// array may be NULL). A broken joint holds nothing and stays broken until destroyed.
+TB_API tb_result tb_joint_read_forces(tb_world* world, const tb_joint_id* ids,
+                                      uint32_t count, tb_vec3* forces, tb_vec3* torques,
+                                      int32_t* broken);
+/// The anchors of `count` joints in world space, from the bodies' present poses (for
+/// drawing); either array may be NULL.
+TB_API tb_result tb_joint_read_anchors(tb_world* world, const tb_joint_id* ids,
+                                       uint32_t count, tb_vec3* anchors_a,
+                                       tb_vec3* anchors_b);
+/// Ids of live joints in slot order; returns how many were written (at most `capacity`).
+TB_API uint32_t tb_world_joint_ids(const tb_world* world, tb_joint_id* out,
+                                   uint32_t capacity);
 
 /* ---------------------------------------------------------------------------------------
  * Plugins (abi/tumble_plugin.h says what a plugin is and how it is built)

@@ -22,7 +22,9 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 192);
+    assert_int_equal(sizeof(tb_gpu_params), 224);
+    assert_int_equal(offsetof(tb_gpu_params, joint_arrays), 192);
+    assert_int_equal(offsetof(tb_gpu_params, joint_info), 208);
     assert_int_equal(offsetof(tb_gpu_params, contact_arrays), 128);
     assert_int_equal(offsetof(tb_gpu_params, block), 160);
     assert_int_equal(offsetof(tb_gpu_params, block_more), 176);
@@ -56,6 +58,19 @@ static void test_shape_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_shape, hull), 80);
     /* std430 array stride of the struct is its size rounded to 16. */
     assert_int_equal(sizeof(tb_gpu_shape) % 16, 0);
+}
+
+static void test_joint_layout(void** state)
+{
+    (void)state;
+    assert_int_equal(sizeof(tb_gpu_joint), 112);
+    assert_int_equal(offsetof(tb_gpu_joint, anchor_a), 16);
+    assert_int_equal(offsetof(tb_gpu_joint, frame_b), 64);
+    assert_int_equal(offsetof(tb_gpu_joint, motor), 96);
+    assert_int_equal(sizeof(tb_gpu_joint_state), 96);
+    assert_int_equal(offsetof(tb_gpu_joint_state, axial), 32);
+    assert_int_equal(offsetof(tb_gpu_joint_state, force), 48);
+    assert_int_equal(offsetof(tb_gpu_joint_state, info), 80);
 }
 
 /* The host writes tb_shape_type straight into info.x. */
@@ -178,6 +193,7 @@ int main(void)
         cmocka_unit_test(test_vec4_types),
         cmocka_unit_test(test_params_layout),
         cmocka_unit_test(test_shape_layout),
+        cmocka_unit_test(test_joint_layout),
         cmocka_unit_test(test_shape_type_values),
         cmocka_unit_test(test_bindings_distinct),
         cmocka_unit_test(test_contact_layout),

@@ -143,6 +143,7 @@ vec3 block_contact_force(uint i)
     uint first = block_start[i], n = block_fill[i];
     for (uint e = 0u; e < n; e++) {
         uint entry = block_entries[first + e].x;
+        if ((entry & TB_BLOCK_JOINT) != 0u) continue;   // joints: block/guess
         uint p = block_pair(entry), k = block_point_of(entry);
         vec3 l = manifolds[p].impulse[k].xyz / h;
         vec3 f = manifolds[p].normal.xyz * l.x + constraints[p].tangent1.xyz * l.y

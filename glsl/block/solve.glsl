@@ -25,6 +25,7 @@
 #define TB_BLOCK_SOLVE_GLSL
 
 #include "listed.glsl"
+#include "joint.glsl"
 #include "../integrate/motion.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
@@ -163,23 +164,45 @@ struct item {
     vec3 dp, v;
 };
 
+// A joint's entry: p is the joint's slot and q is not loaded.
 item item_of(uvec2 entry)
 {
     item it;
     it.entry = entry.x;
-    it.p = block_pair(entry.x);
-    it.k = block_point_of(entry.x);
+    bool joint = block_is_joint(entry.x);
+    it.p = joint ? block_joint_of(entry.x) : block_pair(entry.x);
+    it.k = joint ? 0u : block_point_of(entry.x);
     it.other = entry.y;
     it.other_colour = body_colour[it.other];
-    it.q = block_load(it.p, it.k);
+    if (!joint) it.q = block_load(it.p, it.k);
     motion_of(it.other, it.dp, it.v);
     return it;
 }
 
+// A joint's rows in the Newton step of its body b (is_b) or a.
+void add_joint(inout newton e, uint j, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+{
+    joint_work w = joint_work_primal(is_b);
+    tb_gpu_joint_state s = joint_states[j];
+    joint_rows(w, j, s, dpa, va, dpb, vb);
+    e.A += w.A;
+    e.B += w.B;
+    e.D += w.D;
+    e.gl += w.gl;
+    e.ga += w.ga;
+}
+
 void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
 {
-    if (block_is_b(it.entry)) add_point(e, it.q, true, it.dp, it.v, my_dp, my_v);
-    else add_point(e, it.q, false, my_dp, my_v, it.dp, it.v);
+    bool is_b = block_is_b(it.entry);
+    if (block_is_joint(it.entry)) {
+        if (is_b) add_joint(e, it.p, true, it.dp, it.v, my_dp, my_v);
+        else add_joint(e, it.p, false, my_dp, my_v, it.dp, it.v);
+    } else if (is_b) {
+        add_point(e, it.q, true, it.dp, it.v, my_dp, my_v);
+    } else {
+        add_point(e, it.q, false, my_dp, my_v, it.dp, it.v);
+    }
 }
 
 // The multipliers' update of the item's point if its other body has already moved in this
@@ -188,7 +211,10 @@ void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
 void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
 {
     if (!block_moved_before(it.other_colour, order)) return;
-    if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
+    if (block_is_joint(it.entry)) {
+        if (block_is_b(it.entry)) joint_dual(it.p, it.dp, it.v, my_dp, my_v, last);
+        else joint_dual(it.p, my_dp, my_v, it.dp, it.v, last);
+    } else if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
     else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
 }
 

@@ -54,9 +54,12 @@ void bp_put(uint a, uint b, uint sub)
     bp_found++;
 }
 
-// Report the pair (a, b), in the order the output keeps for it.
+// Report the pair (a, b), in the order the output keeps for it, unless a joint holds the
+// two together that keeps them from colliding (every broadphase's pairs pass here, in the
+// count and the write alike).
 void bp_report(uint a, uint b)
 {
+    if (joint_keeps_apart(a, b)) return;
     uint parts = TB_BODY_FLAG_MESH | TB_BODY_FLAG_COMPOUND;
     bool split = ((body_info[a].y | body_info[b].y) & parts) != 0u;
     bp_put(a, b, split ? TB_PAIR_UNSPLIT : 0u);

@@ -84,10 +84,11 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
  *                   step's command buffer swaps their addresses at its end), so this
  *                   step's manifolds become last step's where they lie
  *   constraints     tb_gpu_constraint[pair cap]: solver data of this step
- *   block_entries   uvec2[8 * pair cap], only in a world that uses the block solver: the
- *                   contact lists of its dynamic bodies, an entry per contact point, grouped
- *                   by body (block_start): x pair index << 2 | point | TB_BLOCK_SIDE_B when
- *                   the body is the pair's body b, y the body at the pair's other end */
+ *   block_entries   uvec2[8 * pair cap + 2 * joint cap], only in a world that uses the block
+ *                   solver: the contact lists of its dynamic bodies, an entry per contact
+ *                   point and per joint, grouped by body (block_start): x pair index << 2 |
+ *                   point (a joint's: its slot | TB_BLOCK_JOINT) | TB_BLOCK_SIDE_B when the
+ *                   body is the pair's (joint's) body b, y the body at the other end */
 #define TB_BIND_PLUGIN_PARAMS   25 /* vec4[TB_MAX_PLUGINS * TB_PLUGIN_PARAM_VEC4S]: each loaded
                                       plugin's parameter block (abi/tumble_plugin.h), the host's
                                       copy uploaded before a submission when it changed */
@@ -220,7 +221,12 @@ TB_STRUCT(tb_gpu_params) {
                                the free motion of a step is predicted in (the substeps),
                                w the share of last step's
                                stiffness a contact starts from (a pair's stiffness is carried
-                               in tb_gpu_manifold.axis.w) */
+                               in tb_gpu_manifold.axis.w) */    TB_UVEC4 joint_arrays;  /* device addresses as (low, high) pairs: xy the joints
+                               (tb_gpu_joint[]), zw their state (tb_gpu_joint_state[]) */
+    TB_UVEC4 joint_info;    /* x joint slots in use (high-water mark), y entries of the table
+                               of body pairs whose joints keep them from colliding (a power of
+                               two; 0: no such joint), zw that table's address (uvec2[]: the
+                               two body slots + 1, lower first; (0, 0) an empty entry) */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
@@ -265,6 +271,54 @@ TB_STRUCT(tb_gpu_counters) {
 #define TB_COUNTERS_COLOUR_DISPATCH_OFFSET (80 + 16 * TB_MAX_COLOURS)
 #define TB_COUNTERS_WIDE_PAIR_DISPATCH_OFFSET (112 + 32 * TB_MAX_COLOURS)
 
+/* Joints (src/joints/, glsl/block/joint.glsl): solved by the block solver beside the
+ * contacts, as rows of each body's Newton step. A joint's frame is given in each body's
+ * frame (the centre-of-mass principal frame); its x axis is a hinge's axis. */
+#define TB_GPU_JOINT_NONE       TB_U(0)   /* a free slot (tb_gpu_joint.info.z) */
+#define TB_GPU_JOINT_BALL       TB_U(1)
+#define TB_GPU_JOINT_HINGE      TB_U(2)
+#define TB_GPU_JOINT_FIXED      TB_U(3)
+#define TB_GPU_JOINT_DISTANCE   TB_U(4)
+#define TB_GPU_JOINT_SLIDER     TB_U(5)
+#define TB_GPU_JOINT_LIMIT      TB_U(0x100) /* flags, beside the kind: the limit is on */
+#define TB_GPU_JOINT_MOTOR      TB_U(0x200) /* the motor is on */
+#define TB_GPU_JOINT_SPRING     TB_U(0x400) /* the distance joint is a spring */
+#define TB_GPU_JOINT_BREAKABLE  TB_U(0x800) /* breaks past motor.zw */
+/* The slot of the filter table where the pair of body slots + 1 (lo < hi) is first looked
+ * for; the next ones follow. */
+#define TB_JOINT_FILTER_HASH(lo, hi) \
+    (((lo) * TB_U(0x9E3779B1)) ^ (((hi) + TB_U(0x7F4A7C15)) * TB_U(0x85EBCA77)))
+TB_STRUCT(tb_gpu_joint) {
+    TB_UVEC4 info;            /* x body a slot, y body b slot, z kind | TB_GPU_JOINT_* flags,
+                                 w the joint's generation (a reused slot starts its state
+                                 anew when it differs from the state's) */
+    TB_VEC4 anchor_a;         /* xyz the joint's point in a's frame (m), w rest length of a
+                                 distance joint (m) */
+    TB_VEC4 anchor_b;         /* xyz in b's frame, w spring frequency (Hz) */
+    TB_VEC4 frame_a;          /* quaternion: the joint frame in a's frame */
+    TB_VEC4 frame_b;          /* in b's frame: the joint holds both frames together */
+    TB_VEC4 limit;            /* x lower, y upper (rad for a hinge, m for a slider or a
+                                 distance joint), z spring damping ratio, w unused */
+    TB_VEC4 motor;            /* x target speed (rad/s, m/s), y most force or torque (N, N m),
+                                 z break force (N), w break torque (N m) */
+};
+/* What the GPU keeps of a joint from step to step, and what the host reads of it. */
+TB_STRUCT(tb_gpu_joint_state) {
+    TB_VEC4 linear;           /* xyz the multipliers of the point rows (ball, hinge, fixed: the
+                                 force on b along the world axes, N; slider:
+                                 x y along the frame's y and z axes), w their stiffness (N/m) */
+    TB_VEC4 angular;          /* xyz the multipliers of the angular rows (the torque on b
+                                 about the world axes, N m), w their stiffness (N m/rad) */
+    TB_VEC4 axial;            /* x the limit's (a distance joint's) multiplier, signed along
+                                 the axis, y its stiffness, z the motor's, w its stiffness */
+    TB_VEC4 force;            /* xyz all the force the joint put on b in the last step (N,
+                                 world), w unused */
+    TB_VEC4 torque;           /* xyz all its torque on b about b's anchor (N m, world) */
+    TB_UVEC4 info;            /* x the generation of the joint this state is of, y 1 once
+                                 broken, z 1 while the limit is engaged (it pushed last step
+                                 or in this one), w unused */
+};
+
 /* A body as the contact solver sees it, in one 96-byte record so a constraint touches three
  * 32-byte sectors per body instead of one per array (velocities, push, pose, inertia, flags),
  * with the world-space inverse inertia worked out once per step instead of per constraint.
@@ -280,6 +334,7 @@ TB_STRUCT(tb_gpu_solver_body) {
 
 /* The block solver: entries of a body's contact list, and its colouring. */
 #define TB_BLOCK_SIDE_B         TB_U(0x80000000)
+#define TB_BLOCK_JOINT          TB_U(0x40000000)   /* a joint's entry: its slot | this | side */
 #define TB_BLOCK_NO_COLOUR      TB_U(0xffffffff)
 #define TB_BLOCK_NOT_SOLVED     TB_U(0xfffffffe)   /* not dynamic: never coloured nor solved */
 

@@ -57,6 +57,31 @@ layout(buffer_reference, std430, buffer_reference_align = 16) buffer ConstraintA
 #define constraints (ConstraintArray(params.contact_arrays[1].xy).v)
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer BlockEntryArray { uvec2 v[]; };
 #define block_entries (BlockEntryArray(params.contact_arrays[1].zw).v)
+// The joints (layout.h, tb_gpu_params.joint_arrays and joints): read only while
+// params.joint_info.x (joint slots) or params.joint_info.y (the filter's entries) is not zero.
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer JointArray { tb_gpu_joint v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 16) buffer JointStateArray { tb_gpu_joint_state v[]; };
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer JointFilterArray { uvec2 v[]; };
+#define joints (JointArray(params.joint_arrays.xy).v)
+#define joint_states (JointStateArray(params.joint_arrays.zw).v)
+#define joint_filter (JointFilterArray(params.joint_info.zw).v)
+
+// Whether a joint without collide_connected holds bodies a and b together: then they do
+// not collide. The host's open-addressed table of slot pairs (src/joints/joints.c).
+bool joint_keeps_apart(uint a, uint b)
+{
+    uint size = params.joint_info.y;
+    if (size == 0u) return false;
+    uvec2 key = uvec2(min(a, b), max(a, b)) + 1u;
+    uint mask = size - 1u;
+    for (uint h = TB_JOINT_FILTER_HASH(key.x, key.y) & mask, n = 0u; n < size; n++) {
+        uvec2 e = joint_filter[h];
+        if (e == key) return true;
+        if (e.x == 0u) return false;
+        h = (h + 1u) & mask;
+    }
+    return false;
+}
 
 // Point k's static friction slip (the block solver's) in a manifold's slip array, which
 // holds two points a vec4: slips[k / 2].xy for even k, .zw for odd.

@@ -118,6 +118,7 @@ tb_result tb_body_destroy(tb_world* w, tb_body_id id)
     tb_result r;
     tb_body_record* b = tb_body_lookup(w, id, &slot, &r);
     if (!b) return r;
+    tb_world_joints_of_body_remove(w, slot);
     tb_bodies_remove(w, slot);
     return TB_OK;
 }

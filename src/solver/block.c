@@ -66,6 +66,9 @@ void tb_block_destroy(tb_block_solver* s)
     if (!s->pipelines) return;
     tb_pipeline_destroy_slots(s->pipelines, kernels, KERNEL_COUNT, s);
     tb_pipeline_destroy_slots(s->pipelines, wide_kernels, WIDE_KERNEL_COUNT, s);
+    if (s->joint_count) tb_pipeline_destroy(s->pipelines, s->joint_count);
+    if (s->joint_fill) tb_pipeline_destroy(s->pipelines, s->joint_fill);
+    if (s->joint_start) tb_pipeline_destroy(s->pipelines, s->joint_start);
     if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
     memset(s, 0, sizeof *s);
 }
@@ -139,6 +142,29 @@ static tb_result per_pair(const tb_block_solver* s, tb_pass_list* list, VkPipeli
                TB_COUNTERS_PAIR_DISPATCH_OFFSET, 0);
 }
 
+/* A thread per joint slot the lists have room for (the kernels skip slots past those in
+ * use, tb_gpu_params.joint_info.x). */
+static tb_result per_joint(const tb_block_solver* s, tb_pass_list* list, VkPipeline pipeline,
+                           uint32_t joint_capacity)
+{
+    tb_pass pass = tb_pass_with_args(pipeline, TB_DISPATCH_FIXED, VK_NULL_HANDLE, 0, 0, 0, 0);
+    pass.groups[0] = (joint_capacity + TB_WORKGROUP_SIZE - 1) / TB_WORKGROUP_SIZE;
+    pass.writes_no_arguments = 1;
+    return tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
+}
+
+tb_result tb_block_prepare_joints(tb_block_solver* s)
+{
+    tb_result r = TB_OK;
+    if (!s->joint_count) r = tb_pipeline_create_once(s->pipelines, "block/joint_count",
+                                                     TB_WORKGROUP_SIZE, &s->joint_count);
+    if (!r && !s->joint_fill) r = tb_pipeline_create_once(s->pipelines, "block/joint_fill",
+                                                          TB_WORKGROUP_SIZE, &s->joint_fill);
+    if (!r && !s->joint_start) r = tb_pipeline_create_once(s->pipelines, "block/joint_start",
+                                                           TB_WORKGROUP_SIZE, &s->joint_start);
+    return r;
+}
+
 uint32_t tb_block_colouring_rounds(uint32_t colours)
 {
     return 2 * colours + 8;
@@ -165,9 +191,11 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     tb_gpu_ptr no_total = { 0 };
     tb_result r = per_body(s, list, s->reset, counters, 0);
     if (!r) r = per_pair(s, list, s->count, counters);
+    if (!r && lists->joint_capacity) r = per_joint(s, list, s->joint_count, lists->joint_capacity);
     if (!r) r = tb_prims_scan(lists->prims, list, lists->starts, lists->starts, lists->slots,
                               lists->body_capacity, no_total, lists->scratch);
     if (!r) r = per_pair(s, list, s->fill, counters);
+    if (!r && lists->joint_capacity) r = per_joint(s, list, s->joint_fill, lists->joint_capacity);
     if (!r) r = per_body(s, list, s->sort, counters, 0);
     uint32_t rounds = tb_block_colouring_rounds(colours);
     for (uint32_t round = 0; round < rounds && !r; round++)
@@ -205,13 +233,15 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
 
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t lanes,
-                                const tb_block_settings* settings, int restitution)
+                                const tb_block_settings* settings, int restitution,
+                                uint32_t joint_capacity)
 {
     VkPipeline sweep = lanes >= 32 ? s->solve_32 : lanes >= 16 ? s->solve_16 : s->solve;
     uint32_t iterations = settings->iterations;
     /* block/solve takes the over-relaxation in thousandths (0: none). */
     uint32_t relax = (uint32_t)lroundf(settings->over_relaxation * 1000.0f);
     tb_result r = per_pair(s, list, s->start, counters);
+    if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++)
         r = over_colours(s, list, counters, sweep, s->solve_tail ? s->solve_tail : sweep,

@@ -32,6 +32,7 @@
 typedef struct tb_block_solver {
     tb_pipelines* pipelines;
     VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, end, bounce;
+    VkPipeline joint_count, joint_fill, joint_start; ///< made when a world first records joints
     VkPipeline solve, solve_16, solve_32;   ///< the sweep with 8, 16 and 32 lanes a body
     VkPipeline solve_tail;                  ///< the sweep over the tail, a workgroup a body
                                             ///< (GPUs; NULL: the sweep's own tail)
@@ -47,6 +48,7 @@ typedef struct tb_block_lists {
     tb_gpu_ptr starts, slots, scratch;
     tb_gpu_ptr tail_flags, tail, tail_count;
     uint32_t body_capacity;
+    uint32_t joint_capacity;   ///< joint slots the joint passes cover (0: no joint passes)
 } tb_block_lists;
 
 /// How the block solver solves (tb_gpu_params.block and block_more; see glsl/block/).
@@ -81,6 +83,9 @@ uint32_t tb_block_colouring_rounds(uint32_t colours);
 /// on first use, as the step is recorded).
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
 
+/// Make the joints' count, fill and start (the first time a world records joints).
+tb_result tb_block_prepare_joints(tb_block_solver* s);
+
 /// The lanes a body for the sweeps (8, 16 or 32; a GPU whose subgroup is narrower, or a CPU
 /// device, uses fewer: glsl/block/block.glsl), from the world's bodies and the contact
 /// points of its last step, and the lanes in use now (`current`, which the choice keeps
@@ -93,7 +98,8 @@ tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
 uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t current);
 
 /// The contact list of every dynamic body and the colouring of the dynamic bodies:
-/// reset, count, scan, fill, sort, tb_block_colouring_rounds(colours) colouring rounds,
+/// reset, count (and the joints' count, with lists->joint_capacity), scan, fill (and the
+/// joints' fill), sort, tb_block_colouring_rounds(colours) colouring rounds,
 /// then the bodies listed by colour (their sweeps' dispatches sized for `lanes` lanes a
 /// body); with all TB_MAX_COLOURS, then the bodies the colouring left over listed, in body
 /// order, as the tail. `counters` is the buffer bound at TB_BIND_COUNTERS.
@@ -102,7 +108,7 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
                                     uint32_t colours, uint32_t lanes);
 
 /// The iterations (after the solver records hold the velocities with gravity and the
-/// inertial pose): start, guess, then `iterations` sweeps (`lanes` lanes a body, as the
+/// inertial pose): start (and the joints' start, with `joint_capacity` slots), guess, then `iterations` sweeps (`lanes` lanes a body, as the
 /// colouring was recorded with), each a solve of colours 0..colours-1 (and, with all
 /// TB_MAX_COLOURS, of the tail, one body at a time) that also updates the multipliers;
 /// then the velocities, and with `restitution` (some shape of the world has restitution) a
@@ -111,6 +117,7 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 /// worse: a 20-box column sank 8.4 cm instead of 8.6 mm.)
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t lanes,
-                                const tb_block_settings* settings, int restitution);
+                                const tb_block_settings* settings, int restitution,
+                                uint32_t joint_capacity);
 
 #endif

@@ -48,16 +48,21 @@ static void write_params(tb_world* w, float dt)
     p->contact_arrays[0] = tb_gpu_addresses(next->address, last->address);
     p->contact_arrays[1] = tb_gpu_addresses(pair[TB_SIM_CONSTRAINTS].address,
                                             pair[TB_SIM_BLOCK_ENTRIES].address);
+    p->joint_arrays = tb_gpu_addresses(w->joints.joints.address, w->joints.state.address);
+    p->joint_info = tb_joints_params(&w->joints);
 }
 
 /* Record this submission's uploads (params, shapes, dirty bodies) and, with a mask, the
  * downloads of those body arrays that are stale. */
 static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const void** landing)
 {
+    tb_result prepared = tb_joints_prepare(&w->joints);
+    if (prepared) return prepared;
     VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
     VkDeviceSize bytes = shape_bytes + tb_hull_table_upload_bytes(&w->narrowphase) +
                          tb_shapes_mesh_upload_bytes(w) +
                          tb_body_store_upload_bytes(&w->store) +
+                         tb_joints_upload_bytes(&w->joints) +
                          tb_body_store_download_bytes(&w->store, mask) + 64;
     tb_transfer* t = &w->transfer;
     tb_result r = tb_transfer_begin(t, bytes);
@@ -78,6 +83,7 @@ static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const voi
     tb_hull_table_record_upload(&w->narrowphase, t);
     tb_shapes_record_mesh_uploads(w, t);
     tb_body_store_record_uploads(&w->store, t);
+    tb_joints_record_uploads(&w->joints, t);
     if (mask) {
         tb_transfer_barrier(t);
         tb_body_store_record_downloads(&w->store, t, mask, landing);
@@ -99,7 +105,7 @@ tb_result tb_world_fetch(tb_world* w, uint32_t mask)
 tb_result tb_world_flush(tb_world* w)
 {
     if (!w->store.dirty_count && !w->shapes_dirty && !w->narrowphase.hulls.dirty &&
-        !w->mesh_uploads &&
+        !w->mesh_uploads && !w->joints.table_dirty && !w->joints.filter_dirty &&
         w->shape_slots.used <= w->shape_buffer_capacity)
         return TB_OK;
     tb_result r = tb_world_prepare_shapes(w);

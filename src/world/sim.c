@@ -63,7 +63,8 @@ static VkDeviceSize pair_bytes(const tb_sim* sim, tb_sim_pair_buffer b, uint32_t
     case TB_SIM_COLOUR_WORK: return 2 * (VkDeviceSize)capacity * 4;
     case TB_SIM_SPLIT: return tb_pair_split_bytes(sim->prims, capacity);
     case TB_SIM_BLOCK_ENTRIES:
-        return sim->block_lists ? 2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity * 8 : 0;
+        return sim->block_lists ? (2 * TB_MAX_MANIFOLD_POINTS * (VkDeviceSize)capacity +
+                                   2 * (VkDeviceSize)sim->joint_capacity) * 8 : 0;
     default: return (VkDeviceSize)capacity * 4;
     }
 }
@@ -201,6 +202,25 @@ tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs)
 {
     if (pairs <= sim->pair_capacity && sim->pair[0].buffer) return TB_OK;
     return resize_pairs(sim, t, pairs);
+}
+
+tb_result tb_sim_reserve_joints(tb_sim* sim, tb_transfer* t, uint32_t joints)
+{
+    if (joints <= sim->joint_capacity) return TB_OK;
+    uint32_t before = sim->joint_capacity;
+    sim->joint_capacity = joints;
+    tb_buffer fresh = { 0 };
+    tb_result r = tb_transfer_begin(t, 0);
+    if (r) {
+        sim->joint_capacity = before;
+        return r;
+    }
+    r = replace(sim, t, &sim->pair[TB_SIM_BLOCK_ENTRIES],
+                pair_bytes(sim, TB_SIM_BLOCK_ENTRIES, sim->pair_capacity), NULL, 0, 0, &fresh);
+    uint32_t binding = UINT32_MAX;
+    r = finish(sim, t, &sim->pair[TB_SIM_BLOCK_ENTRIES], &fresh, &binding, 1, r);
+    if (r) sim->joint_capacity = before;
+    return r;
 }
 
 tb_result tb_sim_set_block_lists(tb_sim* sim, tb_transfer* t, int on)

@@ -41,6 +41,7 @@ typedef struct tb_sim {
     uint32_t pair_capacity;       ///< pairs per half
     uint64_t growths;
     int block_lists;              ///< the block solver's contact lists are sized (else empty)
+    uint32_t joint_capacity;      ///< joints the block solver's lists have room for
 } tb_sim;
 
 /// `block_lists`: the world uses the block solver, which needs TB_SIM_BLOCK_ENTRIES.
@@ -56,6 +57,9 @@ tb_result tb_sim_reserve_bodies(tb_sim* sim, tb_transfer* t, uint32_t capacity);
 uint32_t tb_sim_pair_limit(const tb_sim* sim);
 /// Hold at least `pairs` pairs per half (at most tb_sim_pair_limit). Keeps both halves of pairs and manifolds.
 tb_result tb_sim_reserve_pairs(tb_sim* sim, tb_transfer* t, uint32_t pairs);
+
+/// Room in the block solver's lists for the entries of `joints` joints (two each).
+tb_result tb_sim_reserve_joints(tb_sim* sim, tb_transfer* t, uint32_t joints);
 
 /// The counters as the last executed step left them.
 /// Size the block solver's lists (`on`: every buffer is made anew at the present capacities,

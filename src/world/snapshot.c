@@ -221,6 +221,9 @@ static tb_result download_step_state(tb_world* w, snapshot_header* h, unsigned c
 
 tb_result tb_world_save(tb_world* w, void* out, size_t capacity, size_t* size)
 {
+    if (w->joints.slots.live)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "a world with joints cannot be saved "
+                       "yet (snapshots hold bodies, shapes and contacts)");
     /* The hulls packed first: their places in the hull table are part of the shapes. */
     tb_result r = tb_world_prepare_shapes(w);
     if (!r) r = tb_world_fetch(w, (1u << TB_ARRAY_COUNT) - 1u);
@@ -386,6 +389,9 @@ static tb_result upload_step_state(tb_world* w, const snapshot_header* h,
 
 tb_result tb_world_load(tb_world* w, const void* data, size_t size)
 {
+    if (w->joints.slots.live)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "a snapshot cannot be restored into "
+                       "a world with joints (snapshots hold no joints yet)");
     tb_result r = tb_world_prepare_shapes(w);   /* as tb_world_save fingerprints them */
     if (r) return r;
     snapshot_header h;

@@ -148,8 +148,11 @@ static void block_colour_stage(builder* b)
         .tail = tb_gpu_ptr_of(&sim->pair[TB_SIM_COLOUR_WORK], 0),
         .tail_count = tb_gpu_ptr_of(&sim->counters, offsetof(tb_gpu_counters, colouring) + 8),
         .body_capacity = sim->body_capacity,
+        .joint_capacity = w->joints.slots.used ? w->joints.capacity : 0,
     };
+    w->joint_passes = lists.joint_capacity;
     if (!b->r) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);
+    if (!b->r && lists.joint_capacity) b->r = tb_block_prepare_joints(&w->block);
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
                                                 w->colour_rounds, w->block_lanes);
     end_stage(b, "solver/colour");
@@ -197,7 +200,8 @@ static void solve_stage(builder* b)
         if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 2, w->substeps);
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
                                                 w->colour_rounds, w->block_lanes,
-                                                &w->block_settings, w->bouncy_shapes > 0);
+                                                &w->block_settings, w->bouncy_shapes > 0,
+                                                w->joint_passes);
         end_stage(b, "solver/solve");
         return;
     }

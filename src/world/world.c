@@ -56,6 +56,7 @@ static tb_result create_gpu_objects(tb_world* w, const tb_world_def* def,
     /* The pair capacity is clamped to the device's limit. */
     if (!r) r = tb_sim_init(&w->sim, &w->memory, &w->pipelines, &w->prims, &w->transfer,
                             w->store.capacity, pairs, w->block_solver);
+    if (!r) r = tb_joints_init(&w->joints, &w->memory, &w->transfer);
     if (!r) r = tb_solver_init(&w->solver, &w->pipelines);
     if (!r && w->block_solver) r = tb_block_init(&w->block, &w->pipelines);
     if (!r && !w->block_solver) r = tb_solver_prepare_soft_step(&w->solver);
@@ -130,6 +131,7 @@ void tb_world_free(tb_world* w)
         tb_pair_split_destroy(&w->split);
         tb_solver_destroy(&w->solver);
         tb_block_destroy(&w->block);
+        tb_joints_destroy(&w->joints);
         tb_sim_destroy(&w->sim);
         tb_prims_destroy(&w->prims);
         tb_body_store_destroy(&w->store);
@@ -156,6 +158,10 @@ void tb_world_free(tb_world* w)
 
 tb_result tb_world_use_solver(tb_world* w, int block, uint32_t iterations)
 {
+    if (!block && w->joints.slots.live)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "the soft step does not solve "
+                       "joints, and this world has %u: destroy them first",
+                       w->joints.slots.live);
     tb_result r = TB_OK;
     if (block && !w->block.pipelines) r = tb_block_init(&w->block, &w->pipelines);
     if (!r && !block) r = tb_solver_prepare_soft_step(&w->solver);

@@ -17,6 +17,7 @@
 #include "broadphase/broadphase.h"
 #include "geom/geom.h"
 #include "gpu/gpu.h"
+#include "joints/joints.h"
 #include "layout.h"
 #include "narrowphase/narrowphase.h"
 #include "broadphase/pair_split.h"
@@ -132,6 +133,9 @@ struct tb_world {
     int shapes_dirty;
     tb_plugins plugins;
     tb_events events;
+    tb_joints joints;
+    uint32_t joint_passes;       ///< the joint capacity the step's joint passes were recorded
+                                 ///< for (0: none recorded)
     uint32_t bouncy_shapes;      ///< shapes ever made with restitution > 0: the block solver
                                  ///< records its restitution pass once there is one
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
@@ -244,6 +248,18 @@ tb_result tb_shapes_create_buffer(tb_world* w, uint32_t capacity);
 /// Pack the hulls if they changed and give the GPU shape table room for every shape slot
 /// (either may replace buffers).
 tb_result tb_world_prepare_shapes(tb_world* w);
+
+/* joints.c: joints in the world (the API checked their defs). */
+/// The record of a valid id, or an error and NULL.
+tb_joint_record* tb_joint_lookup(tb_world* w, tb_joint_id id, uint32_t* slot, tb_result* r);
+tb_joint_id tb_joint_id_of_slot(const tb_world* w, uint32_t slot);
+/// Add `count` checked joints whose bodies are the slots a[i] and b[i]; all or none.
+tb_result tb_world_joints_add(tb_world* w, const tb_joint_def* defs, const uint32_t* a,
+                              const uint32_t* b, uint32_t count, tb_joint_id* out);
+void tb_world_joint_remove(tb_world* w, uint32_t slot);
+/// Remove the joints that hold the body in `body_slot` (it is being destroyed).
+void tb_world_joints_of_body_remove(tb_world* w, uint32_t body_slot);
+uint32_t tb_world_joints_ids(const tb_world* w, tb_joint_id* out, uint32_t capacity);
 
 /* readback.c */
 tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count);

@@ -1,0 +1,447 @@
+// Joints in the block solver (layout.h's tb_gpu_joint, src/joints/): a joint is a list
+// entry of each of its dynamic bodies, beside their contact points, and adds its rows to
+// the body's Newton step as a contact does (solve.glsl). Its rows are hard constraints
+// reached by the augmented Lagrangian of the contacts: a force per row
+//     f = lambda - k C      (clamped to [lo, hi]: limits push one way, motors up to a torque),
+// the multiplier lambda taking f after each sweep and the stiffness k growing with the
+// error, both carried to the next step (tb_gpu_joint_state). Unlike a contact's rows,
+// which are linear in the step's motion, a joint's are taken where the sweep has both
+// bodies now (their turn too), with the Jacobian there: a pendulum turns through large
+// angles, and a constraint linearised at the step's start would let it drift off its circle.
+//
+// Rows, with d = the anchor of b minus the anchor of a, and A, B the joint's frames on a
+// and b (the body's rotation times tb_gpu_joint.frame_*), x their first axis:
+//   point (ball, hinge, fixed):  d along the world axes
+//   angular (fixed, slider):     the rotation vector of B A^-1, world axes
+//   aligned axes (hinge):        x_A cross x_B, world axes (two of the three count)
+//   slider's point rows:         d along A's y and z axes
+//   limit:                       hinge: the twist of B about A's x axis; slider: d along x;
+//                                distance: |d|; one side at a time, pushing one way
+//   motor:                       the rate of that twist (or slide) over the step, against
+//                                the target speed, with the force bounded
+//   distance:                    |d| - length (a rod), or a spring to it
+// Shared by block/solve (its sweeps), block/joint_count and block/joint_fill.
+#ifndef TB_BLOCK_JOINT_GLSL
+#define TB_BLOCK_JOINT_GLSL
+
+#include "block.glsl"
+
+bool block_is_joint(uint entry)
+{
+    return (entry & TB_BLOCK_JOINT) != 0u;
+}
+
+uint block_joint_of(uint entry)
+{
+    return entry & ~(TB_BLOCK_JOINT | TB_BLOCK_SIDE_B);
+}
+
+uint block_joint_entry(uint j, bool is_b)
+{
+    return j | TB_BLOCK_JOINT | (is_b ? TB_BLOCK_SIDE_B : 0u);
+}
+
+uint joint_kind(tb_gpu_joint jt)
+{
+    return jt.info.z & 0xffu;
+}
+
+bool joint_has(tb_gpu_joint jt, uint flag)
+{
+    return (jt.info.z & flag) != 0u;
+}
+
+// The stiffness units of a joint's rows (N/m and N m/rad): its bodies' effective mass and
+// moment over dt^2, as a contact's (block_stiffness_unit).
+vec2 joint_units(tb_gpu_joint jt)
+{
+    float h = block_h();
+    uint a = jt.info.x, b = jt.info.y;
+    float ma = block_dynamic(a) ? body_pos[a].w : 0.0;   // inverse masses
+    float mb = block_dynamic(b) ? body_pos[b].w : 0.0;
+    vec3 ia = block_dynamic(a) ? body_inv_inertia[a].xyz : vec3(0.0);
+    vec3 ib = block_dynamic(b) ? body_inv_inertia[b].xyz : vec3(0.0);
+    float turn = max(ia.x, max(ia.y, ia.z)) + max(ib.x, max(ib.y, ib.z));
+    return vec2(1.0 / max(ma + mb, 1e-30), 1.0 / max(turn, 1e-30)) / (h * h);
+}
+
+// Where the sweep has a joint's two bodies: poses, lever arms of the anchors, the frames.
+struct joint_pose {
+    vec3 xa, xb;   // centres of mass
+    vec3 ra, rb;   // anchors from them
+    vec4 fa, fb;   // the joint's frames A and B (world)
+    vec3 d;        // anchor b - anchor a
+    vec3 va, vb;   // how far each has turned since the step began (rotation vectors)
+    vec3 dpa, dpb; // and moved
+};
+
+joint_pose joint_pose_of(tb_gpu_joint jt, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+{
+    joint_pose p;
+    uint a = jt.info.x, b = jt.info.y;
+    vec4 qa = normalize(quat_mul(quat_of_rotation_vector(va), body_rot[a]));
+    vec4 qb = normalize(quat_mul(quat_of_rotation_vector(vb), body_rot[b]));
+    p.xa = body_pos[a].xyz + dpa;
+    p.xb = body_pos[b].xyz + dpb;
+    p.ra = quat_rotate(qa, jt.anchor_a.xyz);
+    p.rb = quat_rotate(qb, jt.anchor_b.xyz);
+    p.fa = quat_mul(qa, jt.frame_a);
+    p.fb = quat_mul(qb, jt.frame_b);
+    p.d = (p.xb + p.rb) - (p.xa + p.ra);
+    p.va = va;
+    p.vb = vb;
+    p.dpa = dpa;
+    p.dpb = dpb;
+    return p;
+}
+
+// One row: its Jacobian on a (linear la, angular aa) and on b (lb, ab), its value C, and a
+// bound on how much its Jacobian turns as each body turns (bend: the size of C's second
+// derivative in the body's turn, a lever arm's length for a point row).
+struct joint_row {
+    vec3 la, aa, lb, ab;
+    float C;
+    vec2 bend;
+};
+
+joint_row joint_row_of(vec3 la, vec3 aa, vec3 lb, vec3 ab, float C)
+{
+    joint_row r;
+    r.la = la;
+    r.aa = aa;
+    r.lb = lb;
+    r.ab = ab;
+    r.C = C;
+    r.bend = vec2(0.0);
+    return r;
+}
+
+// A row along direction u through the anchors: b's anchor moves with b, a's with a.
+joint_row joint_point_row(joint_pose p, vec3 u, float C)
+{
+    joint_row r = joint_row_of(-u, -cross(p.ra, u), u, cross(p.rb, u), C);
+    r.bend = vec2(length(p.ra), length(p.rb));
+    return r;
+}
+
+// A row along a direction u fixed in a's frame A: it turns with a, so a's turn moves the
+// row's value through the direction too (u x d) besides through a's anchor.
+joint_row joint_frame_row(joint_pose p, vec3 u, float C)
+{
+    vec3 reach = p.xb + p.rb - p.xa;
+    joint_row r = joint_row_of(-u, cross(u, reach), u, cross(p.rb, u), C);
+    r.bend = vec2(length(reach), length(p.rb));
+    return r;
+}
+
+// A row of turn about u.
+joint_row joint_turn_row(vec3 u, float C)
+{
+    return joint_row_of(vec3(0.0), -u, vec3(0.0), u, C);
+}
+
+// What the sweep does with a joint's rows: add them to one body's Newton step (primal),
+// or update their multipliers and stiffnesses once both bodies have moved (dual).
+struct joint_work {
+    bool dual;       // else primal
+    bool is_b;       // primal: the body moving is b
+    bool last;       // dual: the step's last sweep
+    float growth;    // dual: the stiffness's growth per unit of error, in units
+    // primal: the Newton blocks of the body (as solve.glsl's newton)
+    mat3 A, B, D;
+    vec3 gl, ga;
+    // dual: the force and torque on b, about b's anchor, summed over the rows
+    vec3 force, torque;
+};
+
+// Row r with multiplier lambda and stiffness k (unit: its stiffness unit), its force
+// clamped to [lo, hi]; `hessian` false leaves its stiffness out of the Newton step (a limit
+// not reached). Dual: lambda takes the force; k grows while the row holds (the force
+// within its bounds) by growth * unit * |C|, up to the largest stiffness.
+void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout float k, float unit,
+                 float lo, float hi, bool hessian, vec3 rb)
+{
+    float f = clamp(lambda - k * r.C, lo, hi);
+    if (w.dual) {
+        if (f > lo && f < hi)
+            k = min(k + w.growth * unit * abs(r.C), params.block.z * unit);
+        lambda = f;
+        w.force += f * r.lb;
+        w.torque += f * (r.ab - cross(rb, r.lb));
+        return;
+    }
+    vec3 jl = w.is_b ? r.lb : r.la, ja = w.is_b ? r.ab : r.aa;
+    w.gl -= f * jl;
+    w.ga -= f * ja;
+    // The force times C's second derivative belongs in the Hessian too; its bound on the
+    // diagonal (as the AVBD paper does) keeps the step from overshooting where the force
+    // is large against the body's inertia: a light link of a chain with a 10 times heavier
+    // end, swinging through the bottom, turned too far and the chain blew up.
+    w.D += abs(f) * (w.is_b ? r.bend.y : r.bend.x) * mat3(1.0);
+    if (!hessian) return;
+    w.A += k * outerProduct(jl, jl);
+    w.B += k * outerProduct(jl, ja);
+    w.D += k * outerProduct(ja, ja);
+}
+
+// An equality row.
+void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float k, float unit,
+                vec3 rb)
+{
+    joint_apply(w, r, lambda, k, unit, -1e30, 1e30, true, rb);
+}
+
+// The three point rows: the anchors meet.
+void joint_point_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state s, float unit)
+{
+    float k = s.linear.w;
+    for (int i = 0; i < 3; i++) {
+        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        float lambda = s.linear[i];
+        float ki = k;
+        joint_hold(w, joint_point_row(p, u, p.d[i]), lambda, ki, unit, p.rb);
+        s.linear[i] = lambda;
+        s.linear.w = max(s.linear.w, ki);
+    }
+}
+
+// The three angular rows of a weld: B A^-1 is no turn.
+void joint_lock_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state s, float unit)
+{
+    vec3 theta = rotation_vector(quat_mul(p.fb, vec4(-p.fa.xyz, p.fa.w)));
+    float k = s.angular.w;
+    for (int i = 0; i < 3; i++) {
+        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        float lambda = s.angular[i];
+        float ki = k;
+        joint_row r = joint_turn_row(u, theta[i]);
+        r.bend = vec2(0.5);
+        joint_hold(w, r, lambda, ki, unit, p.rb);
+        s.angular[i] = lambda;
+        s.angular.w = max(s.angular.w, ki);
+    }
+}
+
+// A hinge's axes stay aligned: c = x_A cross x_B is zero. Its change with b's turn t is
+// ((x_A . x_B) I - x_B x_A^T) t, with a's turn the same with A and B swapped, negated.
+void joint_align_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state s, float unit)
+{
+    vec3 xa = quat_rotate(p.fa, vec3(1.0, 0.0, 0.0)), xb = quat_rotate(p.fb, vec3(1.0, 0.0, 0.0));
+    vec3 c = cross(xa, xb);
+    float cosine = dot(xa, xb);
+    float k = s.angular.w;
+    for (int i = 0; i < 3; i++) {
+        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        vec3 ab = cosine * u - xb[i] * xa, aa = -(cosine * u - xa[i] * xb);
+        float lambda = s.angular[i];
+        float ki = k;
+        joint_row r = joint_row_of(vec3(0.0), aa, vec3(0.0), ab, c[i]);
+        r.bend = vec2(1.0);
+        joint_hold(w, r, lambda, ki, unit, p.rb);
+        s.angular[i] = lambda;
+        s.angular.w = max(s.angular.w, ki);
+    }
+}
+
+// A limit on a coordinate q (the row r's value is q): lower <= q <= upper, one side at a
+// time (the nearer), its multiplier signed along r. Equal bounds lock the coordinate. Its
+// stiffness stays in the Newton step while the limit is engaged (it pushed last step, or
+// has pushed in this one: tb_gpu_joint_state.info.z), even in a sweep where its force drops
+// to nothing, as a contact's does: without it a rope pulled taut went slack in one sweep,
+// fell freely in the next, came back taut with a larger error, and blew up.
+void joint_limit_row(inout joint_work w, joint_row r, float lower, float upper,
+                     inout tb_gpu_joint_state s, float unit, vec3 rb)
+{
+    float q = r.C;
+    float lambda = s.axial.x, k = s.axial.y;
+    bool engaged = (s.info.z & 1u) != 0u;
+    if (upper - lower < 1e-6) {
+        r.C = q - lower;
+        joint_hold(w, r, lambda, k, unit, rb);
+    } else if (q - lower < upper - q) {
+        r.C = q - lower;   // pushes q up: a force >= 0 along r
+        lambda = max(lambda, 0.0);
+        joint_apply(w, r, lambda, k, unit, 0.0, 1e30, engaged || r.C < 0.0, rb);
+    } else {
+        r.C = q - upper;   // pushes q down: a force <= 0 along r
+        lambda = min(lambda, 0.0);
+        joint_apply(w, r, lambda, k, unit, -1e30, 0.0, engaged || r.C > 0.0, rb);
+    }
+    if (w.dual && lambda != 0.0) s.info.z |= 1u;
+    s.axial.x = lambda;
+    s.axial.y = k;
+}
+
+// A motor: the coordinate's change over the step (r's value) against speed * dt, with a
+// force of at most `most` either way.
+void joint_motor_row(inout joint_work w, joint_row r, float speed, float most,
+                     inout tb_gpu_joint_state s, float unit, vec3 rb)
+{
+    r.C -= speed * block_h();
+    float lambda = s.axial.z, k = s.axial.w;
+    joint_apply(w, r, lambda, k, unit, -most, most, true, rb);
+    s.axial.z = lambda;
+    s.axial.w = k;
+}
+
+// The twist of B about A's x axis, in (-pi, pi].
+float joint_twist(joint_pose p)
+{
+    vec4 rel = quat_mul(vec4(-p.fa.xyz, p.fa.w), p.fb);
+    return 2.0 * atan(rel.x, rel.w);
+}
+
+void joint_hinge_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
+                      inout tb_gpu_joint_state s, vec2 unit)
+{
+    joint_point_rows(w, p, s, unit.x);
+    joint_align_rows(w, p, s, unit.y);
+    vec3 x = quat_rotate(p.fa, vec3(1.0, 0.0, 0.0));
+    if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
+        float angle = joint_twist(p);
+        joint_limit_row(w, joint_turn_row(x, angle), jt.limit.x, jt.limit.y, s, unit.y, p.rb);
+    }
+    if (joint_has(jt, TB_GPU_JOINT_MOTOR))
+        joint_motor_row(w, joint_turn_row(x, dot(p.vb - p.va, x)), jt.motor.x, jt.motor.y, s,
+                        unit.y, p.rb);
+}
+
+void joint_slider_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
+                       inout tb_gpu_joint_state s, vec2 unit)
+{
+    vec3 x = quat_rotate(p.fa, vec3(1.0, 0.0, 0.0));
+    vec3 y = quat_rotate(p.fa, vec3(0.0, 1.0, 0.0)), z = quat_rotate(p.fa, vec3(0.0, 0.0, 1.0));
+    float k = s.linear.w;
+    float ly = s.linear.x, lz = s.linear.y, ky = k, kz = k;
+    joint_hold(w, joint_frame_row(p, y, dot(y, p.d)), ly, ky, unit.x, p.rb);
+    joint_hold(w, joint_frame_row(p, z, dot(z, p.d)), lz, kz, unit.x, p.rb);
+    s.linear.xy = vec2(ly, lz);
+    s.linear.w = max(ky, kz);
+    joint_lock_rows(w, p, s, unit.y);
+    if (joint_has(jt, TB_GPU_JOINT_LIMIT))
+        joint_limit_row(w, joint_frame_row(p, x, dot(x, p.d)), jt.limit.x, jt.limit.y, s,
+                        unit.x, p.rb);
+    if (joint_has(jt, TB_GPU_JOINT_MOTOR))
+        joint_motor_row(w, joint_frame_row(p, x, dot(x, p.dpb - p.dpa)), jt.motor.x,
+                        jt.motor.y, s, unit.x, p.rb);
+}
+
+// A distance joint's row along the line between the anchors.
+void joint_distance_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
+                         inout tb_gpu_joint_state s, vec2 unit)
+{
+    float len = length(p.d);
+    vec3 n = len > 1e-6 ? p.d / len : vec3(0.0, 1.0, 0.0);
+    joint_row r = joint_point_row(p, n, len);
+    float rest = jt.anchor_a.w;
+    if (joint_has(jt, TB_GPU_JOINT_SPRING)) {
+        // A spring of the joint's frequency and damping ratio on the bodies' effective mass,
+        // stepped implicitly: stiffness k and damping c over the step act as k + c / dt.
+        float h = block_h(), omega = 6.2831853 * jt.anchor_b.w;
+        float mass = unit.x * h * h;
+        float k = mass * omega * omega, c = 2.0 * mass * jt.limit.z * omega;
+        float moved = dot(n, (p.dpb + cross(p.vb, p.rb)) - (p.dpa + cross(p.va, p.ra)));
+        float stiffness = k + c / h;
+        float f = -(k * (len - rest) + c * moved / h);
+        // As a row of multiplier f + stiffness C and stiffness `stiffness` at C = 0.
+        float lambda = f, kk = stiffness;
+        r.C = 0.0;
+        if (w.dual) {
+            w.force += f * r.lb;
+            w.torque += f * (r.ab - cross(p.rb, r.lb));
+        } else {
+            joint_apply(w, r, lambda, kk, unit.x, -1e30, 1e30, true, p.rb);
+        }
+        if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
+            r.C = len;
+            joint_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
+        }
+        return;
+    }
+    if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
+        joint_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
+        return;
+    }
+    r.C = len - rest;
+    float lambda = s.axial.x, k = s.axial.y;
+    joint_hold(w, r, lambda, k, unit.x, p.rb);
+    s.axial.xy = vec2(lambda, k);
+}
+
+// Joint j's rows as the sweep has its bodies (a moved by dpa and turned by va since the
+// step began, b by dpb, vb): work w's mode says what to do with them; s is the joint's
+// state, updated in the dual.
+void joint_rows(inout joint_work w, uint j, inout tb_gpu_joint_state s, vec3 dpa, vec3 va,
+                vec3 dpb, vec3 vb)
+{
+    tb_gpu_joint jt = joints[j];
+    joint_pose p = joint_pose_of(jt, dpa, va, dpb, vb);
+    vec2 unit = joint_units(jt);
+    uint kind = joint_kind(jt);
+    if (kind == TB_GPU_JOINT_BALL) {
+        joint_point_rows(w, p, s, unit.x);
+    } else if (kind == TB_GPU_JOINT_FIXED) {
+        joint_point_rows(w, p, s, unit.x);
+        joint_lock_rows(w, p, s, unit.y);
+    } else if (kind == TB_GPU_JOINT_HINGE) {
+        joint_hinge_rows(w, jt, p, s, unit);
+    } else if (kind == TB_GPU_JOINT_SLIDER) {
+        joint_slider_rows(w, jt, p, s, unit);
+    } else if (kind == TB_GPU_JOINT_DISTANCE) {
+        joint_distance_rows(w, jt, p, s, unit);
+    }
+}
+
+// Whether joint j holds in this step: a joint in the slot, not broken (a state of another
+// generation is a joint that was in the slot before: block/joint_start starts it anew).
+bool joint_holds(uint j)
+{
+    uvec4 info = joints[j].info;
+    uvec4 state = joint_states[j].info;
+    return (info.z & 0xffu) != TB_GPU_JOINT_NONE && (state.y == 0u || state.x != info.w);
+}
+
+joint_work joint_work_primal(bool is_b)
+{
+    joint_work w;
+    w.dual = false;
+    w.is_b = is_b;
+    w.last = false;
+    w.growth = 0.0;
+    w.A = mat3(0.0);
+    w.B = mat3(0.0);
+    w.D = mat3(0.0);
+    w.gl = vec3(0.0);
+    w.ga = vec3(0.0);
+    w.force = vec3(0.0);
+    w.torque = vec3(0.0);
+    return w;
+}
+
+// The dual update of joint j once both bodies have moved in the sweep: new multipliers and
+// stiffnesses; after the last sweep also the force and torque it put on b, and whether
+// they broke it.
+void joint_dual(uint j, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
+{
+    joint_work w = joint_work_primal(false);
+    w.dual = true;
+    w.last = last;
+    w.growth = params.block.y;
+    tb_gpu_joint_state s = joint_states[j];
+    joint_rows(w, j, s, dpa, va, dpb, vb);
+    if (!finite_all(s.linear) || !finite_all(s.angular) || !finite_all(s.axial)) return;
+    joint_states[j].linear = s.linear;
+    joint_states[j].angular = s.angular;
+    joint_states[j].axial = s.axial;
+    joint_states[j].info.z = s.info.z;
+    if (!last) return;
+    joint_states[j].force = vec4(w.force, 0.0);
+    joint_states[j].torque = vec4(w.torque, 0.0);
+    tb_gpu_joint jt = joints[j];
+    bool breaks = joint_has(jt, TB_GPU_JOINT_BREAKABLE) &&
+                  ((jt.motor.z > 0.0 && length(w.force) > jt.motor.z) ||
+                   (jt.motor.w > 0.0 && length(w.torque) > jt.motor.w));
+    if (breaks) joint_states[j].info.y = 1u;
+}
+
+#endif
