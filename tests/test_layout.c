@@ -67,10 +67,11 @@ static void test_joint_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_joint, anchor_a), 16);
     assert_int_equal(offsetof(tb_gpu_joint, frame_b), 64);
     assert_int_equal(offsetof(tb_gpu_joint, motor), 96);
-    assert_int_equal(sizeof(tb_gpu_joint_state), 96);
+    assert_int_equal(sizeof(tb_gpu_joint_state), 128);
     assert_int_equal(offsetof(tb_gpu_joint_state, axial), 32);
-    assert_int_equal(offsetof(tb_gpu_joint_state, force), 48);
-    assert_int_equal(offsetof(tb_gpu_joint_state, info), 80);
+    assert_int_equal(offsetof(tb_gpu_joint_state, held_force), 48);
+    assert_int_equal(offsetof(tb_gpu_joint_state, force), 80);
+    assert_int_equal(offsetof(tb_gpu_joint_state, info), 112);
 }
 
 /* The host writes tb_shape_type straight into info.x. */

@@ -15,8 +15,46 @@
 // in the step (in one piece: block/end moves the body on by what the pieces add), and the
 // turn the substep passes predicted (in pieces, the spin changing between them by the
 // gyroscopic term as in the soft step's substeps), both kept in block_target.
-#include "block.glsl"
+#include "joint.glsl"
 #include "../integrate/motion.glsl"
+
+// The force and torque (about its centre) that body i's joints' predictions hold it with
+// (joint_held_on; block/joint_start says which joints predict).
+void joints_held(uint i, out vec3 force, out vec3 torque)
+{
+    force = vec3(0.0);
+    torque = vec3(0.0);
+    if (params.joint_info.x == 0u) return;
+    uint first = block_start[i], n = block_fill[i];
+    for (uint e = 0u; e < n; e++) {
+        uint entry = block_entries[first + e].x;
+        if (!block_is_joint(entry)) continue;
+        vec3 f, t;
+        joint_held_on(block_joint_of(entry), block_is_b(entry), f, t);
+        force += f;
+        torque += t;
+    }
+}
+
+// The body's joints push it over the step as their predictions hold it: its velocities
+// change by that force and torque, its prediction (block_target, and where the sweeps
+// start) with them.
+void add_joints(uint i, float h, inout vec3 v)
+{
+    vec3 force, torque;
+    joints_held(i, force, torque);
+    if (force == vec3(0.0) && torque == vec3(0.0)) return;
+    tb_gpu_solver_body s = solver_bodies[i];
+    vec3 dv = h * force * s.linear.w;
+    mat3 r = quat_to_mat3(body_rot[i]);
+    vec3 dw = h * (r * (body_inv_inertia[i].xyz * (transpose(r) * torque)));
+    v += dv;
+    block_target[2u * i].xyz += dv * h;
+    solver_bodies[i].angular.xyz = s.angular.xyz + dw;
+    vec4 turned = normalize(quat_mul(quat_of_rotation_vector(dw * h), s.delta_rotation));
+    block_target[2u * i + 1u] = turned;
+    solver_bodies[i].delta_rotation = turned;
+}
 
 void main()
 {
@@ -35,5 +73,6 @@ void main()
         float held = clamp(dot(block_contact_force(i), up) * s.linear.w / share, 0.0, weight);
         v += h * held * up;
     }
+    add_joints(i, h, v);
     solver_bodies[i].delta_position.xyz = v * h;
 }

@@ -401,6 +401,26 @@ bool joint_holds(uint j)
     return (info.z & 0xffu) != TB_GPU_JOINT_NONE && (state.y == 0u || state.x != info.w);
 }
 
+// Whether the kind's point rows (along the world axes) and angular rows may carry their
+// force into the next step's prediction (tb_gpu_joint_state.held_force, held_torque).
+bool joint_may_hold(uint kind)
+{
+    return kind == TB_GPU_JOINT_BALL || kind == TB_GPU_JOINT_HINGE || kind == TB_GPU_JOINT_FIXED;
+}
+
+// What joint j's prediction holds body i with (held_force and held_torque): the force on
+// it and the torque about its centre, at the poses the step began with.
+void joint_held_on(uint j, bool is_b, out vec3 force, out vec3 torque)
+{
+    tb_gpu_joint jt = joints[j];
+    tb_gpu_joint_state s = joint_states[j];
+    vec3 f = s.held_force.xyz, t = s.held_torque.xyz;
+    uint body = is_b ? jt.info.y : jt.info.x;
+    vec3 r = quat_rotate(body_rot[body], is_b ? jt.anchor_b.xyz : jt.anchor_a.xyz);
+    force = is_b ? f : -f;
+    torque = cross(r, force) + (is_b ? t : -t);
+}
+
 joint_work joint_work_primal(bool is_b)
 {
     joint_work w;
@@ -435,12 +455,12 @@ void joint_dual(uint j, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
     joint_states[j].axial = s.axial;
     joint_states[j].info.z = s.info.z;
     if (!last) return;
-    joint_states[j].force = vec4(w.force, 0.0);
-    joint_states[j].torque = vec4(w.torque, 0.0);
+    joint_states[j].force = vec4(s.held_force.xyz + w.force, 0.0);
+    joint_states[j].torque = vec4(s.held_torque.xyz + w.torque, 0.0);
     tb_gpu_joint jt = joints[j];
     bool breaks = joint_has(jt, TB_GPU_JOINT_BREAKABLE) &&
-                  ((jt.motor.z > 0.0 && length(w.force) > jt.motor.z) ||
-                   (jt.motor.w > 0.0 && length(w.torque) > jt.motor.w));
+                  ((jt.motor.z > 0.0 && length(s.held_force.xyz + w.force) > jt.motor.z) ||
+                   (jt.motor.w > 0.0 && length(s.held_torque.xyz + w.torque) > jt.motor.w));
     if (breaks) joint_states[j].info.y = 1u;
 }
 

@@ -311,6 +311,12 @@ TB_STRUCT(tb_gpu_joint_state) {
                                  about the world axes, N m), w their stiffness (N m/rad) */
     TB_VEC4 axial;            /* x the limit's (a distance joint's) multiplier, signed along
                                  the axis, y its stiffness, z the motor's, w its stiffness */
+    TB_VEC4 held_force;       /* a ball, hinge or weld whose force is about its bodies' weights
+                                 (block/joint_start): xyz the force on b its point rows ended
+                                 last step with (N, world), which the step predicts its bodies'
+                                 motion with (block/guess), the rows' multipliers then finding
+                                 only the change; w 1 while it does so. Zero otherwise */
+    TB_VEC4 held_torque;      /* xyz likewise its angular rows' torque on b (N m, world) */
     TB_VEC4 force;            /* xyz all the force the joint put on b in the last step (N,
                                  world), w unused */
     TB_VEC4 torque;           /* xyz all its torque on b about b's anchor (N m, world) */
