@@ -800,7 +800,8 @@ TB_API tb_result tb_joint_read_forces(tb_world* world, const tb_joint_id* ids,
 TB_API tb_result tb_joint_read_anchors(tb_world* world, const tb_joint_id* ids,
                                        uint32_t count, tb_vec3* anchors_a,
                                        tb_vec3* anchors_b);
-/// Ids of live joints in slot order; returns how many were written (at most `capacity`).
+/// Ids of live joints in slot order, at most `capacity` of them to `out` (NULL with
+/// capacity 0); returns how many joints there are.
 TB_API uint32_t tb_world_joint_ids(const tb_world* world, tb_joint_id* out,
                                    uint32_t capacity);
 

@@ -209,6 +209,37 @@ static void test_heavy_chain(void** state)
     assert_true(gap < 1e-3);
 }
 
+/* Four links hung straight down from a post by ball joints stay still, and each joint
+ * holds the weight of the links below it (within 1 %). */
+static void test_hanging_chain(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_body_id prev = post(w, th_v3(0, 3, 0));
+    tb_shape_id link = th_box(w, th_v3(0.02f, 0.05f, 0.02f));
+    tb_joint_id ids[4];
+    tb_body_id last = prev;
+    for (int i = 0; i < 4; i++) {
+        tb_body_def d = th_dynamic_def(link, th_v3(0, 2.95f - 0.1f * (float)i, 0));
+        d.mass = 1;
+        last = th_body(w, &d);
+        tb_joint_def j = joint_def_at(w, TB_JOINT_BALL, prev, last,
+                                      th_v3(0, 3 - 0.1f * (float)i, 0), th_v3(0, 0, 1));
+        ids[i] = joint(w, &j);
+        prev = last;
+    }
+    for (int s = 0; s < 300; s++) th_assert_ok(tb_world_step(w, DT));
+    tb_vec3 f[4], p;
+    th_assert_ok(tb_joint_read_forces(w, ids, 4, f, NULL, NULL));
+    th_read_pose(w, last, &p, NULL);
+    print_message("  hanging chain: forces %.3f %.3f %.3f %.3f N, end at (%.5f, %.5f)\n", f[0].y,
+                  f[1].y, f[2].y, f[3].y, p.x, p.y);
+    for (int i = 0; i < 4; i++) th_assert_near(f[i].y, (4 - i) * G, 0, 0.01);
+    th_assert_near(p.x, 0, 1e-3, 0);
+    th_assert_near(p.y, 2.65, 1e-3, 0);
+    th_world_destroy(w);
+}
+
 /* The same joint scene twice ends bit for bit the same. */
 static void test_repeatable(void** state)
 {
@@ -343,9 +374,10 @@ static void test_break(void** state)
     th_assert_ok(tb_joint_read_forces(w, &id, 1, &f, &t, &broken));
     tb_vec3 p;
     th_read_pose(w, weight, &p, NULL);
-    print_message("  weak: broken %d, weight at y %.3f\n", broken, p.y);
+    print_message("  weak: broken %d, weight at y %.3f, force %.3f N\n", broken, p.y, f.y);
     assert_int_equal(broken, 1);
     assert_true(p.y < 1.0f);
+    assert_true(f.x == 0 && f.y == 0 && f.z == 0);   /* a broken joint holds nothing */
     th_world_destroy(w);
 }
 
@@ -487,6 +519,7 @@ int main(void)
         cmocka_unit_test(test_pendulum),
         cmocka_unit_test(test_weld),
         cmocka_unit_test(test_heavy_chain),
+        cmocka_unit_test(test_hanging_chain),
         cmocka_unit_test(test_repeatable),
         cmocka_unit_test(test_hinge_limit),
         cmocka_unit_test(test_hinge_motor),

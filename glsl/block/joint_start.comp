@@ -25,21 +25,28 @@ void main()
         s.torque = vec4(0.0);
         s.info = uvec4(jt.info.w, 0u, 0u, 0u);
     } else if (s.info.y != 0u) {
+        // Broken: it holds nothing from the step after it broke on.
+        joint_states[j].force = vec4(0.0);
+        joint_states[j].torque = vec4(0.0);
         return;
     }
     vec2 unit = joint_units(jt) * params.block.x;
     float warm = params.block.w, carry = params.block_more.w;
     uint kind = joint_kind(jt);
-    // Last step's force and torque, and whether this step predicts with them: a joint whose
-    // force is about its bodies' weights (a pendulum's rod) does, so its bodies swing on
-    // their circle instead of out past it each step to be pulled back along the radius,
-    // which cost a 1 m pendulum 28 % of its energy a period (0.06 % over ten periods with
-    // the prediction). One whose force is many times the lighter body's weight (a light
-    // link between heavy ones) does not: there the predicted forces nearly cancel, their
-    // directions lag the link's turn by a step, and a chain with a heavy end blew up.
+    // Last step's force and torque, and whether this step predicts with them: a joint that
+    // is all its dynamic bodies have (a pendulum's rod; no other joint, no contact) and
+    // whose force is about their weights does, so its bodies swing on their circle instead
+    // of out past it each step to be pulled back along the radius, which cost a 1 m
+    // pendulum 28 % of its energy a period (0.08 % over ten periods with the prediction).
+    // Where a body has more (a chain's links), the predicted forces and torques from its
+    // several joints are explicit stiff terms on a light body: with them a hanging chain of
+    // three started to swing by itself, and one with a heavy end blew up.
     vec3 force = s.held_force.xyz + s.linear.xyz, torque = s.held_torque.xyz + s.angular.xyz;
-    float lightest = 1.0 / max(max(body_pos[jt.info.x].w, body_pos[jt.info.y].w), 1e-30);
-    bool predict = joint_may_hold(kind) &&
+    uint a = jt.info.x, b = jt.info.y;
+    bool alone = (!block_dynamic(a) || block_fill[a] == 1u) &&
+                 (!block_dynamic(b) || block_fill[b] == 1u);
+    float lightest = 1.0 / max(max(body_pos[a].w, body_pos[b].w), 1e-30);
+    bool predict = joint_may_hold(kind) && alone &&
                    length(force) <= 2.0 * lightest * length(params.gravity.xyz);
     s.held_force = predict ? vec4(force, 1.0) : vec4(0.0);
     s.held_torque = predict ? vec4(torque, 0.0) : vec4(0.0);

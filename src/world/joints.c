@@ -66,8 +66,8 @@ uint32_t tb_world_joints_ids(const tb_world* w, tb_joint_id* out, uint32_t capac
     uint32_t n = 0;
     for (uint32_t s = 0; s < w->joints.slots.used; s++) {
         if (!w->joints.records[s].alive) continue;
-        if (n == capacity || !out) break;
-        out[n++] = tb_joint_id_of_slot(w, s);
+        if (out && n < capacity) out[n] = tb_joint_id_of_slot(w, s);
+        n++;
     }
     return n;
 }

@@ -259,6 +259,7 @@ tb_result tb_world_joints_add(tb_world* w, const tb_joint_def* defs, const uint3
 void tb_world_joint_remove(tb_world* w, uint32_t slot);
 /// Remove the joints that hold the body in `body_slot` (it is being destroyed).
 void tb_world_joints_of_body_remove(tb_world* w, uint32_t body_slot);
+/// Ids of live joints in slot order (at most `capacity`); returns how many there are.
 uint32_t tb_world_joints_ids(const tb_world* w, tb_joint_id* out, uint32_t capacity);
 
 /* readback.c */

@@ -1,6 +1,7 @@
 /* libFuzzer target over the public API: each input is a sequence of calls (shapes from
  * fuzzed sizes, hull point clouds and meshes, bodies from fuzzed defs, poses, velocities,
- * steps, reads with fuzzed capacities, snapshots and damaged restores, distance queries,
+ * steps, joints between them (made, changed, read and destroyed), reads with fuzzed
+ * capacities, snapshots and damaged restores, distance queries,
  * plugins from fuzzed descriptions) on one world that lives for the whole run and is emptied
  * before each input. Built with AddressSanitizer and UBSan (make fuzz); runs on lavapipe
  * with the validation layers on. Besides crashes and sanitizer reports it stops on:
@@ -23,6 +24,7 @@
 
 #define MAX_SHAPES 32
 #define MAX_BODIES 96
+#define MAX_JOINTS 32
 #define MAX_STEPS_PER_INPUT 4
 #define MAX_PLUGINS 4
 
@@ -36,6 +38,8 @@ static struct {
     uint32_t shape_count;
     tb_body_id bodies[MAX_BODIES];
     uint32_t body_count;
+    tb_joint_id joints[MAX_JOINTS];
+    uint32_t joint_count;
     tb_plugin_id plugins[MAX_PLUGINS];
     fz_plugin_desc* plugin_descs[MAX_PLUGINS];
     uint32_t plugin_count;
@@ -61,14 +65,15 @@ static void log_line(void* user, tb_log_level level, const char* message)
 
 /* ---- the contract every call keeps ------------------------------------------------------ */
 
-typedef struct world_count { uint32_t bodies, shapes; uint64_t steps; } world_count;
+typedef struct world_count { uint32_t bodies, shapes, joints; uint64_t steps; } world_count;
 
 static world_count count_world(void)
 {
     tb_world_stats st;
     if (tb_world_get_stats(world, &st) != TB_OK) die("tb_world_get_stats failed");
     if (st.validation_messages) die("a validation message");
-    return (world_count){ st.body_count, st.shape_count, st.steps };
+    return (world_count){ st.body_count, st.shape_count, tb_world_joint_ids(world, NULL, 0),
+                          st.steps };
 }
 
 /* A call that fails on purpose, so that the next call's message can be told from it. */
@@ -100,8 +105,9 @@ static tb_result call_ends(tb_result r, const char* call)
     const char* now = tb_world_last_error(world);
     if (!now || !*now || strcmp(now, marked) == 0) die("a failed call left no message");
     world_count after = count_world();
-    if (r != TB_ERROR_DEVICE && memcmp(&after, &before, sizeof after) != 0)
-        die("a failed call changed the world");
+    int same = after.bodies == before.bodies && after.shapes == before.shapes &&
+               after.joints == before.joints && after.steps == before.steps;
+    if (r != TB_ERROR_DEVICE && !same) die("a failed call changed the world");
     return r;
 }
 
@@ -123,6 +129,13 @@ static tb_body_id pick_body(fz_input* in)
     return (tb_body_id){ fz_u8(in), (uint16_t)fz_u8(in), (uint16_t)fz_u8(in) };
 }
 
+static tb_joint_id pick_joint(fz_input* in)
+{
+    uint8_t b = fz_u8(in);
+    if (made.joint_count && b < 240) return made.joints[b % made.joint_count];
+    return (tb_joint_id){ fz_u8(in), (uint16_t)fz_u8(in), (uint16_t)fz_u8(in) };
+}
+
 static void keep_shape(tb_shape_id id)
 {
     if (made.shape_count < MAX_SHAPES) made.shapes[made.shape_count++] = id;
@@ -131,6 +144,86 @@ static void keep_shape(tb_shape_id id)
 static void keep_body(tb_body_id id)
 {
     if (made.body_count < MAX_BODIES) made.bodies[made.body_count++] = id;
+}
+
+/* ---- joints ------------------------------------------------------------------------------ */
+
+static tb_joint_def joint_def(fz_input* in)
+{
+    tb_joint_def d = tb_default_joint_def();
+    uint8_t which = fz_u8(in);
+    d.kind = (tb_joint_kind)(which % 6);
+    if (which == 255) d.kind = (tb_joint_kind)fz_u32(in);
+    d.body_a = pick_body(in);
+    d.body_b = pick_body(in);
+    if (fz_u8(in) & 1) {
+        (void)tb_joint_def_at(world, &d, fz_point(in), fz_vec3(in));
+    } else {
+        d.anchor_a = fz_vec3(in);
+        d.anchor_b = fz_vec3(in);
+    }
+    if (which & 8) d.frame_a = fz_rotation(in);
+    if (which & 16) {
+        d.enable_limit = 1;
+        d.lower = fz_float(in);
+        d.upper = fz_float(in);
+    }
+    if (which & 32) {
+        d.enable_motor = 1;
+        d.motor_speed = fz_float(in);
+        d.max_motor_force = fz_float(in);
+    }
+    if (which & 64) {
+        d.enable_spring = 1;
+        d.spring_hertz = fz_float(in);
+        d.spring_damping_ratio = fz_float(in);
+        d.length = fz_float(in);
+    }
+    if (which & 128) {
+        d.break_force = fz_float(in);
+        d.break_torque = fz_float(in);
+        d.collide_connected = 1;
+    }
+    if (which == 254) d.internal_cookie = (int32_t)fz_u32(in);
+    return d;
+}
+
+static void keep_joint(tb_joint_id id)
+{
+    if (made.joint_count < MAX_JOINTS) made.joints[made.joint_count++] = id;
+}
+
+static void make_joints(fz_input* in)
+{
+    uint32_t count = 1 + fz_u8(in) % 4u;
+    tb_joint_def defs[4];
+    tb_joint_id ids[4];
+    for (uint32_t i = 0; i < count; i++) defs[i] = joint_def(in);
+    if (CALL(tb_joint_create_many(world, defs, count, ids)) == TB_OK)
+        for (uint32_t i = 0; i < count; i++) keep_joint(ids[i]);
+}
+
+/* Change, read or destroy a joint. */
+static void use_joint(fz_input* in)
+{
+    tb_joint_id j = pick_joint(in);
+    tb_vec3 f[4], t[4], a[4], b[4];
+    int32_t broken[4];
+    tb_joint_id ids[4];
+    uint32_t count = fz_u8(in) % 5u;
+    for (uint32_t i = 0; i < count; i++) ids[i] = pick_joint(in);
+    uint8_t nulls = fz_u8(in);
+    switch (fz_u8(in) % 5) {
+    case 0: CALL(tb_joint_set_motor(world, j, fz_u8(in) & 1, fz_float(in), fz_float(in))); break;
+    case 1: CALL(tb_joint_set_limit(world, j, fz_u8(in) & 1, fz_float(in), fz_float(in))); break;
+    case 2: CALL(tb_joint_read_forces(world, nulls & 8 ? NULL : ids, count, nulls & 1 ? NULL : f,
+                                      nulls & 2 ? NULL : t, nulls & 4 ? NULL : broken)); break;
+    case 3: CALL(tb_joint_read_anchors(world, nulls & 8 ? NULL : ids, count,
+                                       nulls & 1 ? NULL : a, nulls & 2 ? NULL : b)); break;
+    default:
+        if (CALL(tb_joint_destroy(world, j)) == TB_OK && tb_joint_is_valid(world, j))
+            die("a destroyed joint is still valid");
+    }
 }
 
 /* ---- shapes ------------------------------------------------------------------------------ */
@@ -473,7 +566,8 @@ static void run_call(fz_input* in)
     case 4: make_compound(in); break;
     case 5: read_shape(in); break;
     case 6: case 7: make_bodies(in); break;
-    case 8: move_body(in); break;
+    case 8: if (op & 16) move_body(in); else if (op & 32) make_joints(in); else use_joint(in);
+        break;
     case 9: read_body(in); break;
     case 10: destroy_something(in); break;
     case 11: step(in); break;
