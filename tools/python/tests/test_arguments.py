@@ -242,7 +242,8 @@ def test_shapes_and_single_bodies_name_their_arguments(world, ball):
         world.apply_impulse(body, (1, 2, 3), point=("a", "b", "c"))
     with pytest.raises(ValueError, match="gravity must be 3 numbers"):
         world.gravity = (0, -9.81)
-    with pytest.raises(TypeError, match="what must be a tumble.Body, Bodies or Shape"):
+    with pytest.raises(TypeError, match="what must be a tumble.Body, Bodies, Joint, Joints or "
+                                          "Shape"):
         world.destroy(3)
     with pytest.raises(TypeError, match="path must be a path"):
         world.load_plugin(42)

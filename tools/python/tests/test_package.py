@@ -6,6 +6,7 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 import tumble
@@ -13,6 +14,7 @@ from tumble import _library
 from conftest import PYTHON_DIR
 
 EXAMPLE = os.path.join(PYTHON_DIR, "examples", "pile.py")
+JOINTS_EXAMPLE = os.path.join(PYTHON_DIR, "examples", "joints.py")
 README = os.path.join(PYTHON_DIR, "README.md")
 
 
@@ -110,7 +112,7 @@ def test_the_readme_example_is_examples_pile_py():
 
 
 @pytest.mark.parametrize("heading", ["## Triangle meshes", "## Capsules, cylinders and cones",
-                                     "## Compounds"])
+                                     "## Compounds", "## Joints"])
 def test_the_readme_shape_examples_print_what_they_show(heading):
     with open(README) as f:
         text = f.read()
@@ -137,3 +139,22 @@ def test_the_example_pile_settles():
     carried, weight = (float(x) for x in re.search(
         r"the ground carries (\d+) N at \d+ points; the boxes weigh (\d+) N", lines[-1]).groups())
     assert carried == pytest.approx(weight, rel=0.05)
+
+
+def test_the_example_joints_swing_turn_and_droop():
+    done = run_python(JOINTS_EXAMPLE, {})
+    assert done.returncode == 0, done.stderr
+    text = done.stdout
+    gaps = [float(g) for g in re.findall(r"its joints apart by at most (\S+) mm", text)]
+    assert len(gaps) == 4 and max(gaps) < 1.0                # the chain holds together
+    ends = [float(x) for x in re.findall(r"the chain's end at x = +(\S+),", text)]
+    assert max(ends) > 1 and min(ends) < -1                  # and swings
+    speeds = [float(s) for s in re.findall(r"at (\S+) rad/s", text)]
+    droops = [float(d) for d in re.findall(r"droops (\S+) degrees", text)]
+    assert speeds == pytest.approx([3.0, -1.5], abs=0.02)    # the motor, then set_motor
+    assert droops == pytest.approx([np.degrees(0.5), np.degrees(1.0)], abs=0.5)  # the limits
+    force, torque, weight, lever = (float(x) for x in re.search(
+        r"holds the arm up with (\S+) N and (\S+) N m; the arm weighs (\S+) N, (\S+) m out "
+        r"\(broken: False\)", text).groups())
+    assert force == pytest.approx(weight, rel=0.02)
+    assert torque == pytest.approx(weight * lever, rel=0.02)

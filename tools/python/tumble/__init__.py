@@ -29,8 +29,9 @@ with open(header_path) as _f:
     HEADER_VERSION = _library.header_version(_f.read())
 __version__ = "%d.%d.%d" % HEADER_VERSION
 
-__all__ = ["World", "Shape", "Body", "Bodies", "Plugin", "TumbleError", "ClosedError",
-           "LibraryNotFound", "BODY_ID", "CONTACT", "BROADPHASES", "version",
+__all__ = ["World", "Shape", "Body", "Bodies", "Joint", "Joints", "Plugin", "TumbleError",
+           "ClosedError", "LibraryNotFound", "BODY_ID", "JOINT_ID", "CONTACT", "BROADPHASES",
+           "SOLVERS", "JOINT_KINDS", "version",
            "library_path", "header_path", "library_source", "ffi", "lib"]
 
 
@@ -50,6 +51,9 @@ def _broadphases():
 
 
 SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_solver_kind
+JOINT_KINDS = {"ball": lib.TB_JOINT_BALL, "hinge": lib.TB_JOINT_HINGE,   # tb_joint_kind
+               "fixed": lib.TB_JOINT_FIXED, "distance": lib.TB_JOINT_DISTANCE,
+               "slider": lib.TB_JOINT_SLIDER}
 
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
@@ -92,6 +96,7 @@ def _dtype(ctype):
 
 
 BODY_ID = _dtype("tb_body_id")    # index1, world, generation
+JOINT_ID = _dtype("tb_joint_id")  # index1, world, generation
 CONTACT = _dtype("tb_contact")    # a, b, point, normal, separation, normal_impulse, ...
 
 
@@ -178,9 +183,9 @@ def _quat(name, value):
     return ffi.new("tb_quat*", (x, y, z, w))[0]
 
 
-def _rows(name, value, columns, n=None, read=_reals):
+def _rows(name, value, columns, n=None, read=_reals, what="bodies"):
     """An (n, columns) array, float32 (or as `read` makes it). One row of `columns` numbers
-    is taken as one row, or, when `n` is given, as the row of all n."""
+    is taken as one row, or, when `n` is given, as the row of all n (`what` there are)."""
     a = read(name, value)
     if a.ndim == 1 and a.shape[0] == columns:
         a = a.reshape(1, columns) if n is None else np.tile(a, (n, 1))
@@ -188,7 +193,7 @@ def _rows(name, value, columns, n=None, read=_reals):
         raise ValueError("%s must be an (n, %d) array (or %d numbers), got an array of "
                          "shape %s" % (name, columns, columns, a.shape))
     if n is not None and a.shape[0] != n:
-        raise ValueError("%s has %d rows but there are %d bodies" % (name, a.shape[0], n))
+        raise ValueError("%s has %d rows but there are %d %s" % (name, a.shape[0], n, what))
     return np.ascontiguousarray(a)
 
 
@@ -244,48 +249,55 @@ class Body(_Id):
     _ctype = "tb_body_id"
 
 
-class Bodies:
-    """Ids of bodies in order, as a numpy array of BODY_ID (the C array the bulk calls
-    take). Indexing with an int gives a Body; with a slice, mask or index array, Bodies."""
+class Joint(_Id):
+    """One joint's id (World.create_joint, an element of the Joints create_joints returns)."""
+    __slots__ = ()
+    _ctype = "tb_joint_id"
+
+
+class _Ids:
+    """Ids in order as a numpy array of a structured id dtype; Bodies and Joints."""
+    _dtype, _dtype_name, _one = None, None, None
 
     def __init__(self, ids):
         ids = np.asarray(ids)
-        if ids.dtype != BODY_ID or ids.ndim != 1:
-            raise TypeError("ids must be a 1-D array of tumble.BODY_ID, got %s of %s"
-                            % (ids.shape, ids.dtype))
+        if ids.dtype != self._dtype or ids.ndim != 1:
+            raise TypeError("ids must be a 1-D array of tumble.%s, got %s of %s"
+                            % (self._dtype_name, ids.shape, ids.dtype))
         self.ids = np.ascontiguousarray(ids)
 
     def __len__(self):
         return len(self.ids)
 
     def __iter__(self):
-        return (Body(*i) for i in self.ids.tolist())
+        return (self._one(*i) for i in self.ids.tolist())
 
     def __getitem__(self, k):
         if isinstance(k, numbers.Integral) and not isinstance(k, (bool, np.bool_)):
-            return Body(*self.ids[k].tolist())
-        return Bodies(self.ids[k])
+            return self._one(*self.ids[k].tolist())
+        return type(self)(self.ids[k])
 
     def __repr__(self):
-        return "Bodies(%d)" % len(self)
+        return "%s(%d)" % (type(self).__name__, len(self))
 
     def __add__(self, other):
-        if not isinstance(other, Bodies):
+        if type(other) is not type(self):
             return NotImplemented
-        return Bodies(np.concatenate([self.ids, other.ids]))
+        return type(self)(np.concatenate([self.ids, other.ids]))
 
     def index(self, ids):
-        """Where each of `ids` (Bodies, a BODY_ID array such as contacts()["a"], or a Body)
-        is in this collection, -1 where it is not: an int array, or an int for a Body."""
-        if isinstance(ids, Body):
+        """Where each of `ids` (this collection's kind, an id array of its dtype, or one id)
+        is in this collection, -1 where it is not: an int array, or an int for one id."""
+        if isinstance(ids, self._one):
             return int(self.index(np.array([(ids.index1, ids.world, ids.generation)],
-                                            dtype=BODY_ID))[0])
-        if isinstance(ids, Bodies):
+                                            dtype=self._dtype))[0])
+        if isinstance(ids, type(self)):
             ids = ids.ids
         ids = np.asarray(ids)
-        if ids.dtype != BODY_ID:
-            raise TypeError("ids must be a Body, Bodies or an array of tumble.BODY_ID, "
-                            "got an array of %s" % ids.dtype)
+        if ids.dtype != self._dtype:
+            raise TypeError("ids must be a %s, %s or an array of tumble.%s, got an array of %s"
+                            % (self._one.__name__, type(self).__name__, self._dtype_name,
+                               ids.dtype))
         mine = self.ids.view(np.uint64)
         order = np.argsort(mine, kind="stable")
         wanted = np.ascontiguousarray(ids).view(np.uint64).reshape(ids.shape)
@@ -295,6 +307,22 @@ class Bodies:
         found = order[at] if len(mine) else at
         hit = mine[found] == wanted if len(mine) else np.zeros(wanted.shape, dtype=bool)
         return np.where(hit, found, -1)
+
+
+class Bodies(_Ids):
+    """Ids of bodies in order, as a numpy array of BODY_ID (the C array the bulk calls
+    take). Indexing with an int gives a Body; with a slice, mask or index array, Bodies.
+    index(ids) says where each of `ids` (Bodies, a BODY_ID array such as contacts()["a"],
+    or a Body) is, -1 where it is not."""
+    _dtype, _dtype_name, _one = BODY_ID, "BODY_ID", Body
+
+
+class Joints(_Ids):
+    """Ids of joints in order, as a numpy array of JOINT_ID (the C array the bulk calls
+    take). Indexing with an int gives a Joint; with a slice, mask or index array, Joints.
+    index(ids) says where each of `ids` (Joints, a JOINT_ID array or a Joint) is, -1 where
+    it is not."""
+    _dtype, _dtype_name, _one = JOINT_ID, "JOINT_ID", Joint
 
 
 def _as_body(name, value):
@@ -313,15 +341,38 @@ def _as_shape(name, value):
     return value
 
 
-def _as_bodies(name, value):
-    """(C array of ids, count, what keeps the C array alive) for a Body or Bodies."""
-    if isinstance(value, Body):
-        ids = np.array([(value.index1, value.world, value.generation)], dtype=BODY_ID)
-    elif isinstance(value, Bodies):
+def _as_joint(name, value):
+    if isinstance(value, Joint):
+        return value
+    if isinstance(value, Joints) and len(value) == 1:
+        return value[0]
+    raise TypeError("%s must be a tumble.Joint (from World.create_joint, or an element of "
+                    "the Joints create_joints returned), got %r" % (name, value))
+
+
+def _as_ids(name, value, many):
+    """(C array of ids, count, what keeps the C array alive) for one id or a collection of
+    `many` (Bodies, Joints)."""
+    one = many._one
+    if isinstance(value, one):
+        ids = np.array([(value.index1, value.world, value.generation)], dtype=many._dtype)
+    elif isinstance(value, many):
         ids = value.ids
     else:
-        raise TypeError("%s must be tumble.Bodies or a tumble.Body, got %r" % (name, value))
-    return (ffi.from_buffer("tb_body_id[]", ids) if len(ids) else ffi.NULL), len(ids), ids
+        raise TypeError("%s must be tumble.%s or a tumble.%s, got %r"
+                        % (name, many.__name__, one.__name__, value))
+    ctype = one._ctype + "[]"
+    return (ffi.from_buffer(ctype, ids) if len(ids) else ffi.NULL), len(ids), ids
+
+
+def _as_bodies(name, value):
+    """(C array of ids, count, what keeps the C array alive) for a Body or Bodies."""
+    return _as_ids(name, value, Bodies)
+
+
+def _as_joints(name, value):
+    """(C array of ids, count, what keeps the C array alive) for a Joint or Joints."""
+    return _as_ids(name, value, Joints)
 
 
 # ---- plugins ---------------------------------------------------------------------------------
@@ -790,8 +841,9 @@ class World:
             _vector("angular_velocity", angular_velocity, 3), **others)[0]
 
     def destroy(self, what):
-        """Destroy a Body, all of Bodies (all or none: each must be live, and none twice), or
-        a Shape (refused while bodies use it)."""
+        """Destroy a Body (and its joints), all of Bodies (all or none: each must be live,
+        and none twice), a Joint, all of Joints (likewise), or a Shape (refused while bodies
+        use it)."""
         w = self._handle()
         if isinstance(what, Shape):
             self._check(lib.tb_shape_destroy(w, what._c()))
@@ -799,31 +851,45 @@ class World:
         if isinstance(what, Body):
             self._check(lib.tb_body_destroy(w, what._c()))
             return
-        if not isinstance(what, Bodies):
-            raise TypeError("what must be a tumble.Body, Bodies or Shape, got %r" % (what,))
+        if isinstance(what, Joint):
+            self._check(lib.tb_joint_destroy(w, what._c()))
+            return
+        if isinstance(what, Bodies):
+            destroy, kind = lib.tb_body_destroy, "body"
+        elif isinstance(what, Joints):
+            destroy, kind = lib.tb_joint_destroy, "joint"
+        else:
+            raise TypeError("what must be a tumble.Body, Bodies, Joint, Joints or Shape, got "
+                            "%r" % (what,))
         live = self.is_valid(what)
         if not live.all():
             k = int(np.argmin(live))
             try:    # the library's sentence for why this one is not live
-                self._check(lib.tb_body_destroy(w, what[k]._c()))
+                self._check(destroy(w, what[k]._c()))
             except TumbleError as e:
                 raise TumbleError(e.code, "what[%d]: %s; nothing was destroyed" % (k, e)) \
                     from None
         if len(np.unique(what.ids.view(np.uint64))) != len(what):
-            raise ValueError("what names a body twice; nothing was destroyed")
-        for body in what:
-            self._check(lib.tb_body_destroy(w, body._c()))
+            raise ValueError("what names a %s twice; nothing was destroyed" % kind)
+        for one in what:
+            self._check(destroy(w, one._c()))
 
     def is_valid(self, what):
-        """Whether a Body or Shape is live in this world; for Bodies a bool array."""
+        """Whether a Body, Joint or Shape is live in this world; for Bodies or Joints a bool
+        array. A joint dies with either of its bodies."""
         w = self._handle()
         if isinstance(what, Shape):
             return bool(lib.tb_shape_is_valid(w, what._c()))
         if isinstance(what, Body):
             return bool(lib.tb_body_is_valid(w, what._c()))
+        if isinstance(what, Joint):
+            return bool(lib.tb_joint_is_valid(w, what._c()))
         if isinstance(what, Bodies):
             return np.array([bool(lib.tb_body_is_valid(w, b._c())) for b in what], dtype=bool)
-        raise TypeError("what must be a tumble.Body, Bodies or Shape, got %r" % (what,))
+        if isinstance(what, Joints):
+            return np.array([bool(lib.tb_joint_is_valid(w, j._c())) for j in what], dtype=bool)
+        raise TypeError("what must be a tumble.Body, Bodies, Joint, Joints or Shape, got %r"
+                        % (what,))
 
     def body_ids(self):
         """Every live body of the world, in slot order, as Bodies."""
@@ -937,6 +1003,221 @@ class World:
                 w, ffi.from_buffer("tb_contact[]", out), len(out), count))
         return out[:count[0]]
 
+    # ---- joints ----------------------------------------------------------------------------
+
+    def create_joints(self, kind, bodies_a, bodies_b, at=None, axis=None, anchors_a=None,
+                      anchors_b=None, frames_a=None, frames_b=None, length=None, limit=None,
+                      motor=None, spring=None, collide_connected=False, break_force=None,
+                      break_torque=None):
+        """Joints of one `kind` ("ball", "hinge", "fixed", "distance" or "slider"), joint i
+        between bodies_a[i] and bodies_b[i], in one tb_joint_create_many call: all are made
+        or none. bodies_a and bodies_b are Bodies of one length, or a Body that every joint
+        shares (a hook that all hang from). Where each joint holds, either:
+
+        - at ((n, 3) m, world; 3 numbers for all) and axis (likewise, default (1, 0, 0)):
+          the anchors at that world point and the frames' x axes (a hinge's or slider's
+          axis) along that world direction, from the bodies' present poses
+          (tb_joint_def_at); or
+        - anchors_a, anchors_b ((n, 3) m, each in its body's frame; default the origins)
+          and frames_a, frames_b ((n, 4) x y z w quaternions in the bodies' frames; default
+          identity). A distance joint's two anchors are two points: give these.
+
+        The options apply to all: length (distance joints, m; default 1), limit=(lower,
+        upper) (hinges rad in [-pi, pi], sliders and distance joints m), motor=(speed,
+        max_force) (hinges rad/s and N m, sliders m/s and N), spring=(hertz, damping_ratio)
+        (distance joints: a spring to `length` instead of a rod), collide_connected (whether
+        the two bodies collide; default False), break_force (N) and break_torque (N m): the
+        joint breaks once it holds more (None or 0: never). Each holds from the next step
+        on. Returns their Joints."""
+        return self._create_joints(kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
+                                   frames_a, frames_b, length, limit, motor, spring,
+                                   collide_connected, break_force, break_torque, False)
+
+    def create_joint(self, kind, body_a, body_b, at=None, axis=None, anchor_a=None,
+                     anchor_b=None, frame_a=None, frame_b=None, length=None, limit=None,
+                     motor=None, spring=None, collide_connected=False, break_force=None,
+                     break_torque=None):
+        """One joint of `kind` ("ball", "hinge", "fixed", "distance" or "slider") between
+        body_a and body_b: at a world point `at` (3 numbers) with the hinge's or slider's
+        `axis` (a world direction, default (1, 0, 0)), or at anchor_a and anchor_b (each in
+        its body's frame) with frame_a and frame_b (x y z w). The other keywords are
+        create_joints'. Returns its Joint."""
+        a, b = _as_body("body_a", body_a), _as_body("body_b", body_b)
+        one = {}
+        for name, value, size in (("at", at, 3), ("axis", axis, 3), ("anchor_a", anchor_a, 3),
+                                  ("anchor_b", anchor_b, 3), ("frame_a", frame_a, 4),
+                                  ("frame_b", frame_b, 4)):
+            one[name] = None if value is None else _vector(name, value, size)
+        return self._create_joints(kind, a, b, one["at"], one["axis"], one["anchor_a"],
+                                   one["anchor_b"], one["frame_a"], one["frame_b"], length,
+                                   limit, motor, spring, collide_connected, break_force,
+                                   break_torque, True)[0]
+
+    def _create_joints(self, kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
+                       frames_a, frames_b, length, limit, motor, spring, collide_connected,
+                       break_force, break_torque, single):
+        if not isinstance(kind, str) or kind not in JOINT_KINDS:
+            raise ValueError("kind must be one of %s, got %r"
+                             % (", ".join(repr(k) for k in JOINT_KINDS), kind))
+        suffix = "" if single else "s"
+        ends = []
+        for name, value in (("body_a" if single else "bodies_a", bodies_a),
+                            ("body_b" if single else "bodies_b", bodies_b)):
+            if not isinstance(value, (Body, Bodies)):
+                raise TypeError("%s must be a tumble.Body%s, got %r"
+                                % (name, "" if single else " or Bodies", value))
+            ends.append(value)
+        counts = [len(e) for e in ends if isinstance(e, Bodies)]
+        if len(counts) == 2 and counts[0] != counts[1]:
+            raise ValueError("bodies_a has %d bodies but bodies_b has %d (one of each a joint)"
+                             % tuple(counts))
+        n = counts[0] if counts else 1
+        ids_a, ids_b = (e.ids if isinstance(e, Bodies) else
+                        np.array([(e.index1, e.world, e.generation)] * n, dtype=BODY_ID)
+                        for e in ends)
+        placed = [("anchor%s_a" % suffix, "anchor_a", 3, anchors_a),
+                  ("anchor%s_b" % suffix, "anchor_b", 3, anchors_b),
+                  ("frame%s_a" % suffix, "frame_a", 4, frames_a),
+                  ("frame%s_b" % suffix, "frame_b", 4, frames_b)]
+        placed = [p for p in placed if p[3] is not None]
+        if at is not None and placed:
+            raise ValueError("give at (and axis) or %s, not both: at sets the anchors and the "
+                             "frames" % ", ".join(p[0] for p in placed))
+        if at is None and axis is not None:
+            raise ValueError("axis goes with at (the world point the joint is made at); "
+                             "without at, give frame%s_a and frame%s_b" % (suffix, suffix))
+        per_joint = {field: _rows(name, value, columns, n, what="joints")
+                     for name, field, columns, value in placed}
+        if at is not None:
+            at = _rows("at", at, 3, n, what="joints")
+            axis = _rows("axis", (1.0, 0.0, 0.0) if axis is None else axis, 3, n,
+                         what="joints")
+        template = ffi.new("tb_joint_def*", lib.tb_default_joint_def())
+        template.kind = JOINT_KINDS[kind]
+        for name, value in (("length", length), ("break_force", break_force),
+                            ("break_torque", break_torque)):
+            if value is not None:
+                setattr(template, name, _real(name, value))
+        for name, value, enable, fields in (
+                ("limit", limit, "enable_limit", ("lower", "upper")),
+                ("motor", motor, "enable_motor", ("motor_speed", "max_motor_force")),
+                ("spring", spring, "enable_spring", ("spring_hertz", "spring_damping_ratio"))):
+            if value is not None:
+                pair = _vector(name, value, 2)
+                setattr(template, enable, 1)
+                for field, number in zip(fields, pair.tolist()):
+                    setattr(template, field, number)
+        if not isinstance(collide_connected, (bool, np.bool_)):
+            raise TypeError("collide_connected must be True or False, got %r"
+                            % (collide_connected,))
+        template.collide_connected = int(bool(collide_connected))
+        w = self._handle()
+        defs = ffi.new("tb_joint_def[]", max(n, 1))
+        size = ffi.sizeof("tb_joint_def")
+        raw = np.frombuffer(ffi.buffer(defs), dtype=np.uint8).reshape(-1, size)
+        raw[:] = np.frombuffer(ffi.buffer(template), dtype=np.uint8)
+        for field, ids in (("body_a", ids_a), ("body_b", ids_b)):
+            view = np.ndarray((n,), dtype=BODY_ID, buffer=ffi.buffer(defs),
+                              offset=ffi.offsetof("tb_joint_def", field), strides=(size,))
+            view[:] = ids
+        for field, values in per_joint.items():
+            view = np.ndarray((n, values.shape[1]), dtype=np.float32, buffer=ffi.buffer(defs),
+                              offset=ffi.offsetof("tb_joint_def", field), strides=(size, 4))
+            view[:] = values
+        if at is not None:
+            for i in range(n):
+                code = lib.tb_joint_def_at(w, defs + i, tuple(at[i].tolist()),
+                                           tuple(axis[i].tolist()))
+                if code != lib.TB_OK and not single:   # its sentence says "joint def 0"
+                    why = ffi.string(lib.tb_world_last_error(w)).decode()
+                    why = why[len("joint def 0: "):] if why.startswith("joint def 0: ") else why
+                    raise TumbleError(code, "joint %d (at[%d], axis[%d]): %s; no joint was "
+                                      "made" % (i, i, i, why))
+                self._check(code)
+        ids = np.zeros(n, dtype=JOINT_ID)
+        out = ffi.from_buffer("tb_joint_id[]", ids) if n else ffi.NULL
+        self._check(lib.tb_joint_create_many(w, defs, n, out))
+        return Joints(ids)
+
+    def joint_bodies(self, joint):
+        """The two bodies of a Joint, (body_a, body_b); of Joints, (Bodies, Bodies)."""
+        w = self._handle()
+        if isinstance(joint, Joints):
+            a, b = np.zeros(len(joint), dtype=BODY_ID), np.zeros(len(joint), dtype=BODY_ID)
+            out_a, out_b = ffi.new("tb_body_id*"), ffi.new("tb_body_id*")
+            for i, j in enumerate(joint):
+                self._check(lib.tb_joint_get_bodies(w, j._c(), out_a, out_b))
+                a[i] = (out_a.index1, out_a.world, out_a.generation)
+                b[i] = (out_b.index1, out_b.world, out_b.generation)
+            return Bodies(a), Bodies(b)
+        j = _as_joint("joint", joint)
+        out_a, out_b = ffi.new("tb_body_id*"), ffi.new("tb_body_id*")
+        self._check(lib.tb_joint_get_bodies(w, j._c(), out_a, out_b))
+        return Body._from_c(out_a[0]), Body._from_c(out_b[0])
+
+    def _set_pair(self, set_pair, joint, names, first, second, enable):
+        """tb_joint_set_motor or tb_joint_set_limit: both numbers when turning it on; when
+        turning it off, the numbers given or 0."""
+        j = _as_joint("joint", joint)
+        if not isinstance(enable, (bool, np.bool_)):
+            raise TypeError("enable must be True or False, got %r" % (enable,))
+        if enable and (first is None or second is None):
+            raise TypeError("give %s and %s (or enable=False to turn it off)" % names)
+        first = 0.0 if first is None else _real(names[0], first)
+        second = 0.0 if second is None else _real(names[1], second)
+        self._check(set_pair(self._handle(), j._c(), int(bool(enable)), first, second))
+
+    def set_motor(self, joint, speed=None, max_force=None, enable=True):
+        """A hinge's or slider's motor, from the next step on: target `speed` (hinges rad/s
+        of body b about the axis relative to a, sliders m/s) with at most `max_force` (N m,
+        N; >= 0). set_motor(joint, enable=False) turns it off."""
+        self._set_pair(lib.tb_joint_set_motor, joint, ("speed", "max_force"), speed,
+                       max_force, enable)
+
+    def set_limit(self, joint, lower=None, upper=None, enable=True):
+        """A hinge's (rad, within [-pi, pi]), slider's or distance joint's (m) limit, from
+        the next step on, lower <= upper. set_limit(joint, enable=False) turns it off."""
+        self._set_pair(lib.tb_joint_set_limit, joint, ("lower", "upper"), lower, upper,
+                       enable)
+
+    def joint_forces(self, joints):
+        """What a Joint or Joints held in the last step, in one tb_joint_read_forces call:
+        forces (n, 3) N and torques (n, 3) N m (about b's anchor) each applied to its body b,
+        world frame, float32, and broken (n,) bool (a broken joint holds nothing from then
+        on and stays broken until destroyed). Zeros for a joint that has not stepped yet."""
+        ids, n, keep = _as_joints("joints", joints)
+        forces = np.zeros((n, 3), dtype=np.float32)
+        torques = np.zeros((n, 3), dtype=np.float32)
+        broken = np.zeros(n, dtype=np.int32)
+        w = self._handle()
+        if n:
+            self._check(lib.tb_joint_read_forces(w, ids, n, ffi.from_buffer("tb_vec3[]", forces),
+                                                 ffi.from_buffer("tb_vec3[]", torques),
+                                                 ffi.from_buffer("int32_t[]", broken)))
+        return forces, torques, broken != 0
+
+    def joint_anchors(self, joints):
+        """The anchors (anchors_a (n, 3), anchors_b (n, 3), float32, m) of a Joint or Joints
+        in world space from the bodies' present poses, in one tb_joint_read_anchors call."""
+        ids, n, keep = _as_joints("joints", joints)
+        anchors_a = np.zeros((n, 3), dtype=np.float32)
+        anchors_b = np.zeros((n, 3), dtype=np.float32)
+        w = self._handle()
+        if n:
+            self._check(lib.tb_joint_read_anchors(w, ids, n,
+                                                  ffi.from_buffer("tb_vec3[]", anchors_a),
+                                                  ffi.from_buffer("tb_vec3[]", anchors_b)))
+        return anchors_a, anchors_b
+
+    def joint_ids(self):
+        """Every live joint of the world, in slot order, as Joints."""
+        w = self._handle()
+        n = lib.tb_world_joint_ids(w, ffi.NULL, 0)   # how many there are
+        ids = np.zeros(n, dtype=JOINT_ID)
+        if n:
+            n = lib.tb_world_joint_ids(w, ffi.from_buffer("tb_joint_id[]", ids), n)
+        return Joints(ids[:n])
+
     # ---- stepping and stats ----------------------------------------------------------------
 
     def step(self, dt=1.0 / 60.0, n=1):
@@ -948,7 +1229,8 @@ class World:
     def snapshot(self):
         """The world's state as bytes (tb_world_snapshot): restore() puts it back, here or in
         a world made alike (the same def, solver, broadphase and shapes, made in the same
-        order), and the world then continues bit for bit as it did from there."""
+        order), and the world then continues bit for bit as it did from there. A world with
+        joints is refused (the library does not save joints yet)."""
         w = self._handle()
         size = ffi.new("size_t*")
         self._check(lib.tb_world_snapshot(w, ffi.NULL, 0, size))

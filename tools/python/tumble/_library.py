@@ -44,8 +44,8 @@ class LibraryNotFound(ImportError):
 
 def declarations(header_text):
     """The header as cffi takes it: no preprocessor lines (continued ones included) but
-    integer #defines, no blocks for C++ or for building the library, no static constants,
-    TB_API gone."""
+    integer #defines (an unsigned one's `u` dropped: TB_MAX_JOINTS), no blocks for C++ or
+    for building the library, no static constants, TB_API gone."""
     out, skipping, continued = [], 0, False
     for line in header_text.splitlines():
         s = line.strip()
@@ -59,7 +59,7 @@ def declarations(header_text):
         elif skipping and s.startswith("#endif"):
             skipping -= 1
         elif not skipping:
-            define = re.match(r"#define\s+(\w+)\s+(\d+)\s*$", s)
+            define = re.match(r"#define\s+(\w+)\s+(\d+)[uU]?\s*$", s)
             if define:
                 out.append("#define %s %s" % define.groups())
             elif not s.startswith("#") and not s.startswith("static const"):
