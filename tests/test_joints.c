@@ -405,6 +405,49 @@ static void test_collide_connected(void** state)
     }
 }
 
+/* Two boxes side by side on a static slab, hinged together without collide_connected,
+ * under every broadphase: each keeps its own contact with the slab and rests on it, and
+ * no contact joins the two boxes or a body to itself (a broadphase that cached the pair
+ * the joint drops once left a body paired with itself, and the box fell through). */
+static void test_jointed_on_ground(void** state)
+{
+    (void)state;
+    const tb_broadphase kinds[] = { TB_BROADPHASE_GRID, TB_BROADPHASE_SAP, TB_BROADPHASE_LBVH,
+                                    TB_BROADPHASE_ISAP };
+    for (int k = 0; k < 4; k++) {
+        tb_world_def def = tb_default_world_def();
+        def.broadphase = kinds[k];
+        tb_world* w = th_world_create(&def);
+        tb_body_def slab = th_static_def(th_box(w, th_v3(3, 0.5f, 3)), th_v3(0, -0.5f, 0));
+        th_body(w, &slab);
+        tb_shape_id box = th_box(w, th_v3(0.25f, 0.1f, 0.25f));
+        tb_body_def da = th_dynamic_def(box, th_v3(-0.25f, 0.1f, 0));
+        tb_body_def db = th_dynamic_def(box, th_v3(0.25f, 0.1f, 0));
+        tb_body_id a = th_body(w, &da), b = th_body(w, &db);
+        tb_joint_def j = joint_def_at(w, TB_JOINT_HINGE, a, b, th_v3(0, 0.1f, 0), th_v3(0, 0, 1));
+        joint(w, &j);
+        for (int s = 0; s < 60; s++) th_assert_ok(tb_world_step(w, DT));
+        tb_contact c[64];
+        uint32_t n = 0;
+        th_assert_ok(tb_world_read_contacts(w, c, 64, &n));
+        tb_vec3 pa, pb;
+        th_read_pose(w, a, &pa, NULL);
+        th_read_pose(w, b, &pb, NULL);
+        print_message("  %s: %u contact points, boxes at y %.4f and %.4f\n",
+                      tb_broadphase_name(kinds[k]), n, pa.y, pb.y);
+        for (uint32_t i = 0; i < n && i < 64; i++) {
+            assert_true(c[i].a.index1 != c[i].b.index1);
+            int ab = (c[i].a.index1 == a.index1 && c[i].b.index1 == b.index1) ||
+                     (c[i].a.index1 == b.index1 && c[i].b.index1 == a.index1);
+            assert_false(ab);
+        }
+        assert_int_equal(n, 8);
+        th_assert_near(pa.y, 0.1, 2e-3, 0);
+        th_assert_near(pb.y, 0.1, 2e-3, 0);
+        th_world_destroy(w);
+    }
+}
+
 /* A weight on a distance joint made a spring of 2 Hz settles where the spring holds its
  * weight (k = m (2 pi f)^2), within 2 %; as a rope (limit 0 to 1 m) it hangs at 1 m. */
 static void test_distance(void** state)
@@ -526,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_slider),
         cmocka_unit_test(test_break),
         cmocka_unit_test(test_collide_connected),
+        cmocka_unit_test(test_jointed_on_ground),
         cmocka_unit_test(test_distance),
         cmocka_unit_test(test_bad_input),
     };

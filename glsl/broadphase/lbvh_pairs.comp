@@ -20,6 +20,10 @@ uint partners;   // partners the count pass met so far (past TB_LBVH_CACHED_PAIR
 
 void report(uint i, uint j)
 {
+    // A jointed pair that does not collide is never met, so the cache holds only what the
+    // count counted (cached and then dropped by bp_report, it left a pair unwritten: a body
+    // paired with itself).
+    if (joint_keeps_apart(i, j)) return;
     if (!bp_writing() && partners < TB_LBVH_CACHED_PAIRS) {
         lbvh_cache().v[partners * lbvh_capacity() + entry] = j;
         partners++;

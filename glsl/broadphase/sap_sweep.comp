@@ -57,7 +57,9 @@ bool pairs_with(uvec4 amin, uvec4 amax, uint aflags, uvec4 tmin, uvec4 tmax)
     uint tflags = tmax.w;
     if ((tflags & TB_SAP_BOX_OUT) != 0u) return false;
     if (((aflags | tflags) & TB_SAP_BOX_DYNAMIC) == 0u) return false;
-    return sap_boxes_touch(amin, amax, tmin, tmax);
+    // Jointed bodies that do not collide (pairs.glsl's bp_report says the same; the
+    // subgroup's sweep below writes its pairs itself).
+    return sap_boxes_touch(amin, amax, tmin, tmax) && !joint_keeps_apart(amin.w, tmin.w);
 }
 
 // Whether a box of minimum `tmin` (or any later one) is beyond the reach of a finder with

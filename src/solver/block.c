@@ -69,6 +69,8 @@ void tb_block_destroy(tb_block_solver* s)
     if (s->joint_count) tb_pipeline_destroy(s->pipelines, s->joint_count);
     if (s->joint_fill) tb_pipeline_destroy(s->pipelines, s->joint_fill);
     if (s->joint_start) tb_pipeline_destroy(s->pipelines, s->joint_start);
+    if (s->solve_joints) tb_pipeline_destroy(s->pipelines, s->solve_joints);
+    if (s->solve_tail_joints) tb_pipeline_destroy(s->pipelines, s->solve_tail_joints);
     if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
     memset(s, 0, sizeof *s);
 }
@@ -162,6 +164,14 @@ tb_result tb_block_prepare_joints(tb_block_solver* s)
                                                           TB_WORKGROUP_SIZE, &s->joint_fill);
     if (!r && !s->joint_start) r = tb_pipeline_create_once(s->pipelines, "block/joint_start",
                                                            TB_WORKGROUP_SIZE, &s->joint_start);
+    if (!r) r = tb_pipeline_create_once(s->pipelines, "block/solve_joints",
+                                        TB_SOLVER_WORKGROUP_SIZE, &s->solve_joints);
+    /* The tail's own sweep only where block/solve_tail is made (tb_block_init). */
+    if (!r && s->solve_tail)
+        r = tb_pipeline_create_once(s->pipelines, "block/solve_tail_joints",
+                                    s->pipelines->gpu->is_cpu ? TB_SOLVER_WORKGROUP_SIZE
+                                                              : TB_BLOCK_TAIL_WORKGROUP_SIZE,
+                                    &s->solve_tail_joints);
     return r;
 }
 
@@ -237,6 +247,11 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
                                 uint32_t joint_capacity)
 {
     VkPipeline sweep = lanes >= 32 ? s->solve_32 : lanes >= 16 ? s->solve_16 : s->solve;
+    VkPipeline tail = s->solve_tail ? s->solve_tail : sweep;
+    if (joint_capacity) {
+        sweep = s->solve_joints;
+        tail = s->solve_tail_joints ? s->solve_tail_joints : sweep;
+    }
     uint32_t iterations = settings->iterations;
     /* block/solve takes the over-relaxation in thousandths (0: none). */
     uint32_t relax = (uint32_t)lroundf(settings->over_relaxation * 1000.0f);
@@ -244,8 +259,7 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
     if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = over_colours(s, list, counters, sweep, s->solve_tail ? s->solve_tail : sweep,
-                         colours, it + 1 == iterations, relax);
+        r = over_colours(s, list, counters, sweep, tail, colours, it + 1 == iterations, relax);
     if (!r) r = per_body(s, list, s->end, counters, 0);
     if (!r && restitution)
         r = over_colours(s, list, counters, s->bounce, s->bounce, colours, 0, 0);

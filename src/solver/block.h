@@ -33,6 +33,7 @@ typedef struct tb_block_solver {
     tb_pipelines* pipelines;
     VkPipeline reset, count, fill, sort, colour, list, finish, start, guess, end, bounce;
     VkPipeline joint_count, joint_fill, joint_start; ///< made when a world first records joints
+    VkPipeline solve_joints, solve_tail_joints;    ///< the sweeps with joints (8 lanes a body)
     VkPipeline solve, solve_16, solve_32;   ///< the sweep with 8, 16 and 32 lanes a body
     VkPipeline solve_tail;                  ///< the sweep over the tail, a workgroup a body
                                             ///< (GPUs; NULL: the sweep's own tail)
@@ -83,7 +84,8 @@ uint32_t tb_block_colouring_rounds(uint32_t colours);
 /// on first use, as the step is recorded).
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
 
-/// Make the joints' count, fill and start (the first time a world records joints).
+/// Make the joints' count, fill and start, and the sweeps with joints (the first time a
+/// world records joints; its sweeps then have 8 lanes a body).
 tb_result tb_block_prepare_joints(tb_block_solver* s);
 
 /// The lanes a body for the sweeps (8, 16 or 32; a GPU whose subgroup is narrower, or a CPU

@@ -134,6 +134,13 @@ static void narrowphase_stage(builder* b)
     }
 }
 
+/* The lanes a body of the block solver's sweeps: a world with joints sweeps with 8 (its
+ * sweep with joints comes in that width only). */
+static uint32_t block_sweep_lanes(const tb_world* w)
+{
+    return w->joint_passes ? 8 : w->block_lanes;
+}
+
 /* The block solver's contact lists and colouring of bodies, in place of the colouring of
  * constraints. */
 static void block_colour_stage(builder* b)
@@ -154,7 +161,7 @@ static void block_colour_stage(builder* b)
     if (!b->r) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);
     if (!b->r && lists.joint_capacity) b->r = tb_block_prepare_joints(&w->block);
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
-                                                w->colour_rounds, w->block_lanes);
+                                                w->colour_rounds, block_sweep_lanes(w));
     end_stage(b, "solver/colour");
 }
 
@@ -199,7 +206,7 @@ static void solve_stage(builder* b)
          * and the pose the solve's inertia pulls towards. */
         if (!b->r) b->r = tb_solver_record_substep_bodies(&w->solver, &b->list, 2, w->substeps);
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
-                                                w->colour_rounds, w->block_lanes,
+                                                w->colour_rounds, block_sweep_lanes(w),
                                                 &w->block_settings, w->bouncy_shapes > 0,
                                                 w->joint_passes);
         end_stage(b, "solver/solve");

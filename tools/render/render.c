@@ -2,11 +2,12 @@
  * a barrier after the world's compute writes, a compute pass that lists the bodies of each
  * triangle-mesh shape (render_meshes.c), one render pass (planes, then instanced spheres,
  * boxes, capsules, cylinders, cones, hulls and meshes, then AABB lines, then contact lines,
- * depth-tested, then the static bodies see-through), a copy of the colour image into a
- * host-visible buffer, and a wait on our own fence. Bodies and contacts are never looped
- * over on the host, except to read AABBs for the automatic camera and to know whether a
- * plane exists; shapes are, to keep a mesh per hull and mesh shape and to know which shape
- * types live (render_hulls.c). */
+ * depth-tested, then joint lines over everything, then the static bodies see-through), a
+ * copy of the colour image into a host-visible buffer, and a wait on our own fence. Bodies
+ * and contacts are never looped over on the host, except to read AABBs for the automatic
+ * camera and to know whether a plane exists; joints are (render_joints.c), and shapes are,
+ * to keep a mesh per hull and mesh shape and to know which shape types live
+ * (render_hulls.c). */
 #include <math.h>
 #include <png.h>
 #include <stdio.h>
@@ -43,7 +44,7 @@ tr_options tr_default_options(void)
         .camera = { .eye = { 10, 8, 14 }, .target = { 0, 0, 0 }, .up = { 0, 1, 0 },
                     .fov_y_degrees = 45.0f, .automatic = 1 },
         .color = TR_COLOR_BY_ID, .speed_scale = 10.0f, .show_aabbs = 0, .show_grid = 1,
-        .show_contacts = 0, .static_opacity = 0.3f,
+        .show_contacts = 0, .show_joints = 1, .static_opacity = 0.3f,
     };
     return o;
 }
@@ -116,6 +117,7 @@ void tr_destroy(tr_renderer* r)
     if (r->dev.device) {
         tr_pipelines_destroy(r);
         tr_mesh_lists_destroy(r);
+        tr_joints_destroy(r);
         tr_hulls_destroy(r);
         tr_gpu_destroy(r);
     }
@@ -189,6 +191,7 @@ typedef struct tr_frame {
     int default_plane;          /* the grid under the scene, for a world without planes */
     uint32_t first_manifold;    /* the last step's manifolds in the manifold buffer */
     uint32_t manifolds;         /* 0: no contact overlay */
+    uint32_t joint_vertices;    /* 0: no joint overlay */
 } tr_frame;
 
 static void push(const tr_renderer* r, const tr_push* p)
@@ -249,6 +252,14 @@ static void draw_contacts(const tr_renderer* r, tr_push* p, const tr_frame* f)
     vkCmdDraw(r->cb, TB_MAX_MANIFOLD_POINTS * TR_CONTACT_VERTICES_PER_POINT, f->manifolds, 0, 0);
 }
 
+/* The joint overlay after the contacts, over everything: the segments the host wrote. */
+static void draw_joints(const tr_renderer* r, const tr_push* p, const tr_frame* f)
+{
+    vkCmdBindPipeline(r->cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->joint_pipeline);
+    push(r, p);
+    vkCmdDraw(r->cb, f->joint_vertices, 1, 0, 0);
+}
+
 /* Everything inside the render pass. Planes go first: they fade out by blending over the
  * clear colour. Each body draw covers every body slot; the shaders hide what is not theirs.
  * See-through static bodies go last, blended over everything they hide. */
@@ -285,6 +296,7 @@ static void record_draws(const tr_renderer* r, const tr_view* v, const tr_frame*
         vkCmdDraw(cb, 24, slots, 0, 0);
     }
     if (f->manifolds) draw_contacts(r, &p, f);
+    if (f->joint_vertices) draw_joints(r, &p, f);
     /* Opacity 0 leaves static bodies out altogether. */
     if ((p.mode[2] & TR_FLAG_SEE_THROUGH) && r->options.static_opacity > 0.0f) {
         vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r->static_pipeline);
@@ -393,6 +405,7 @@ tb_result tr_render(tr_renderer* r)
     if (res) return res;
     tr_frame frame = { .slots = bodies.slots };
     if (r->options.show_contacts) res = prepare_contacts(r, &frame);
+    if (!res && r->options.show_joints) res = tr_joints_prepare(r, &frame.joint_vertices);
     if (res) return res;
     tr_scene scene = { 0 };
     if (r->options.camera.automatic || r->options.show_grid) res = tr_scene_scan(r, &scene);

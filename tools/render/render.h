@@ -1,5 +1,6 @@
 /* tools/render: draws a Tumble world with Vulkan graphics on the world's own device,
- * reading poses straight from the world's GPU buffers (no round trip through the host).
+ * reading poses straight from the world's GPU buffers (no round trip through the host, but
+ * for the joint overlay's lines).
  *
  * Headless: frames go to an offscreen image, read back as RGBA8 or written as PNG.
  * With GLFW and a display, tr_window_run shows the simulation live.
@@ -38,6 +39,11 @@ typedef struct tr_options {
     /// body a towards b) a short yellow line; depth-tested against the scene (lifted a
     /// little towards the eye, so contacts on visible surfaces show whole). Default 0.
     int show_contacts;
+    /// Draw the joints (render_joints.c): each a dark blue line from body a's centre to its
+    /// anchor and from b's anchor to b's centre, and a red one between the two anchors
+    /// (where a joint has come apart, or a distance joint's rod); over the scene, not
+    /// depth-tested, so a chain or ragdoll shows as its skeleton. Default 1.
+    int show_joints;
     /// Opacity of static bodies other than planes (container walls, floors), 0..1. Below 1
     /// their faces that look up (within about 45 degrees: floors, tops of walls) stay
     /// opaque and the others are drawn last, blended over what they hide (only those turned

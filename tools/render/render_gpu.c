@@ -143,10 +143,10 @@ tb_result tr_gpu_init(tr_renderer* r)
     vkGetPhysicalDeviceMemoryProperties(r->dev.physical_device, &r->memory_properties);
     r->max_image_size = props.limits.maxImageDimension2D;
     r->max_storage_range = props.limits.maxStorageBufferRange;
-    /* The set shows the vertex and compute stages 11 storage buffers (7 body arrays, the
-     * manifolds, 3 for the mesh lists); the guaranteed minimum is only 4. */
-    if (props.limits.maxPerStageDescriptorStorageBuffers < 11)
-        return tr_fail(r, TB_ERROR_DEVICE, "the renderer needs 11 storage buffers per shader "
+    /* The set shows the vertex and compute stages 12 storage buffers (7 body arrays, the
+     * manifolds, 3 for the mesh lists, the joint lines); the guaranteed minimum is only 4. */
+    if (props.limits.maxPerStageDescriptorStorageBuffers < 12)
+        return tr_fail(r, TB_ERROR_DEVICE, "the renderer needs 12 storage buffers per shader "
                        "stage; %s allows %u", props.deviceName,
                        props.limits.maxPerStageDescriptorStorageBuffers);
     r->depth_format = pick_depth_format(r->dev.physical_device);

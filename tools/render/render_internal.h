@@ -139,9 +139,12 @@ struct tr_renderer {
     int contacts_written;
     uint64_t contacts_generation;
     VkBuffer contacts_buffer;
+    /* The joint overlay's segments, written by the host each frame (render_joints.c). */
+    tr_buffer joint_lines;
+    uint32_t joint_line_capacity;   /* vertices it holds */
 
     VkPipelineLayout pipeline_layout;
-    VkPipeline mesh_pipeline, plane_pipeline, line_pipeline, contact_pipeline;
+    VkPipeline mesh_pipeline, plane_pipeline, line_pipeline, contact_pipeline, joint_pipeline;
     VkPipeline static_pipeline;   /* see-through static bodies: blended, no depth writes */
     VkPipeline mesh_list_pipeline; /* compute: the bodies of each mesh shape */
 
@@ -215,7 +218,12 @@ tb_result tr_mesh_lists_prepare(tr_renderer* r, uint32_t slots);
 void tr_mesh_lists_record(tr_renderer* r, uint32_t slots);
 void tr_mesh_lists_destroy(tr_renderer* r);
 
-/* render_pipelines.c: descriptor set, the five graphics pipelines and the compute one */
+/* render_joints.c: the joint overlay */
+/// Write this frame's joint segments; *vertices receives how many to draw (0: none).
+tb_result tr_joints_prepare(tr_renderer* r, uint32_t* vertices);
+void tr_joints_destroy(tr_renderer* r);
+
+/* render_pipelines.c: descriptor set, the six graphics pipelines and the compute one */
 tb_result tr_pipelines_create(tr_renderer* r);
 tb_result tr_bind_bodies(tr_renderer* r, const tb_vulkan_bodies* bodies);
 tb_result tr_bind_contacts(tr_renderer* r, const tb_vulkan_contacts* contacts);

@@ -1,8 +1,9 @@
-/* The descriptor set that shows the world's body arrays (and its contact manifolds and the
- * mesh shapes' body lists) to the shaders, the five graphics pipelines: instanced meshes,
- * the same see-through (static bodies), plane quads with grid, AABB lines, contact lines;
- * and the compute pipeline that lists the bodies of each mesh shape. Viewport and scissor
- * are dynamic so that a size change keeps the pipelines. */
+/* The descriptor set that shows the world's body arrays (and its contact manifolds, the
+ * mesh shapes' body lists and the joint overlay's lines) to the shaders, the six graphics
+ * pipelines: instanced meshes, the same see-through (static bodies), plane quads with grid,
+ * AABB lines, contact lines, joint lines; and the compute pipeline that lists the bodies of
+ * each mesh shape. Viewport and scissor are dynamic so that a size change keeps the
+ * pipelines. */
 #include <stddef.h>
 #include <string.h>
 
@@ -17,9 +18,11 @@ static const uint32_t BODY_BINDINGS[] = {
 };
 #define BODY_BINDING_COUNT (sizeof BODY_BINDINGS / sizeof BODY_BINDINGS[0])
 /* Plus the manifolds, written only once contacts are shown: until then no bound pipeline
- * uses the binding, so it may stay unwritten; and the mesh lists (render_meshes.c). */
+ * uses the binding, so it may stay unwritten; the mesh lists (render_meshes.c); and the
+ * joint lines, likewise written only once there are joints to draw (render_joints.c). */
 static const uint32_t OWN_BINDINGS[] = {
     TR_BIND_MANIFOLDS, TR_BIND_MESH_OF_SHAPE, TR_BIND_MESH_COMMANDS, TR_BIND_MESH_INSTANCES,
+    TR_BIND_JOINT_LINES,
 };
 #define BINDING_COUNT (BODY_BINDING_COUNT + sizeof OWN_BINDINGS / sizeof OWN_BINDINGS[0])
 
@@ -149,6 +152,7 @@ typedef struct pipeline_desc {
     int mesh_input;     /* tr_vertex attributes from binding 0 */
     int blend;          /* alpha blending over what is there (planes fading, see-through) */
     int no_depth_write; /* depth-tested only (see-through static bodies) */
+    int no_depth_test;  /* drawn over everything, depth neither tested nor written */
 } pipeline_desc;
 
 static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipeline* out)
@@ -193,8 +197,8 @@ static tb_result create_pipeline(tr_renderer* r, const pipeline_desc* p, VkPipel
     };
     VkPipelineDepthStencilStateCreateInfo depth = {
         .sType = VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO,
-        .depthTestEnable = VK_TRUE,
-        .depthWriteEnable = p->no_depth_write ? VK_FALSE : VK_TRUE,
+        .depthTestEnable = p->no_depth_test ? VK_FALSE : VK_TRUE,
+        .depthWriteEnable = p->no_depth_write || p->no_depth_test ? VK_FALSE : VK_TRUE,
         .depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL,
     };
     /* Blending keeps the destination alpha (1 from the clear), so the frame stays opaque. */
@@ -254,15 +258,17 @@ static tb_result create_compute(tr_renderer* r, const char* name, VkPipeline* ou
 tb_result tr_pipelines_create(tr_renderer* r)
 {
     static const pipeline_desc mesh = { "mesh.vert", "mesh.frag",
-                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 0, 0 };
+                                        VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 0, 0, 0 };
     static const pipeline_desc plane = { "plane.vert", "plane.frag",
-                                         VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 0, 1, 0 };
+                                         VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 0, 1, 0, 0 };
     static const pipeline_desc line = { "aabb.vert", "line.frag",
-                                        VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0 };
+                                        VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0, 0 };
     static const pipeline_desc contact = { "contacts.vert", "line.frag",
-                                           VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0 };
+                                           VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0, 0 };
     static const pipeline_desc see_through = { "mesh.vert", "mesh.frag",
-                                               VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 1, 1 };
+                                               VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST, 1, 1, 1, 0 };
+    static const pipeline_desc joints = { "joints.vert", "line.frag",
+                                          VK_PRIMITIVE_TOPOLOGY_LINE_LIST, 0, 0, 0, 1 };
     tb_result res = create_layouts(r);
     if (!res) res = create_descriptor_set(r);
     if (!res) res = create_pipeline(r, &mesh, &r->mesh_pipeline);
@@ -270,6 +276,7 @@ tb_result tr_pipelines_create(tr_renderer* r)
     if (!res) res = create_pipeline(r, &line, &r->line_pipeline);
     if (!res) res = create_pipeline(r, &contact, &r->contact_pipeline);
     if (!res) res = create_pipeline(r, &see_through, &r->static_pipeline);
+    if (!res) res = create_pipeline(r, &joints, &r->joint_pipeline);
     if (!res) res = create_compute(r, "mesh_lists.comp", &r->mesh_list_pipeline);
     return res;
 }
@@ -277,10 +284,10 @@ tb_result tr_pipelines_create(tr_renderer* r)
 void tr_pipelines_destroy(tr_renderer* r)
 {
     VkDevice d = r->dev.device;
-    VkPipeline* pipelines[6] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
+    VkPipeline* pipelines[7] = { &r->mesh_pipeline, &r->plane_pipeline, &r->line_pipeline,
                                  &r->contact_pipeline, &r->static_pipeline,
-                                 &r->mesh_list_pipeline };
-    for (int i = 0; i < 6; i++) {
+                                 &r->joint_pipeline, &r->mesh_list_pipeline };
+    for (int i = 0; i < 7; i++) {
         if (*pipelines[i]) vkDestroyPipeline(d, *pipelines[i], NULL);
         *pipelines[i] = VK_NULL_HANDLE;
     }

@@ -14,6 +14,7 @@ struct scene_instance {
     tb_vec3* x0;
     tb_vec3* v0;
     tb_vec3 box_min, box_max;   ///< interior of the container (pile scenes)
+    uint32_t side;              ///< joint_grid: spheres along a row
 };
 
 scene_instance* instance_alloc(uint32_t count);
@@ -121,5 +122,60 @@ tb_result stack_check(tb_world* world, const scene_instance* inst, uint32_t step
 tb_result columns_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
                         scene_checks* out);
 uint32_t pyramid_base(uint32_t n);
+
+/* joints.c: what the joint scenes share */
+#define JOINTS_HALF_PI 1.57079633f
+/// A static box (posts, anchors to hang things from).
+tb_result joints_static_box(tb_world* world, tb_vec3 centre, tb_vec3 half, tb_body_id* out);
+/// A static plane, its surface at y = 0.
+tb_result joints_ground(tb_world* world);
+/// A default joint of `kind` between a and b, anchors and frames set at the world point
+/// `point` with the frames' x axes along `axis` (tb_joint_def_at).
+tb_result joints_def_at(tb_world* world, tb_joint_kind kind, tb_body_id a, tb_body_id b,
+                        tb_vec3 point, tb_vec3 axis, tb_joint_def* out);
+/// Create `count` joints (tb_joint_create_many) whose ids the scene does not keep (the
+/// checks list them with tb_world_joint_ids, in the order made).
+tb_result joints_create(tb_world* world, const tb_joint_def* defs, uint32_t count);
+/// Rotation by `angle` rad about the unit `axis`.
+tb_quat joints_axis_angle(tb_vec3 axis, float angle);
+tb_quat joints_quat_mul(tb_quat a, tb_quat b);
+tb_vec3 joints_rotate(tb_quat q, tb_vec3 v);
+tb_vec3 joints_add(tb_vec3 a, tb_vec3 b);
+double joints_distance(tb_vec3 a, tb_vec3 b);
+/// The angle between two directions, rad (atan2, exact near 0 where acos is not).
+double joints_angle_between(tb_vec3 u, tb_vec3 v);
+/// The instance's bodies' poses (malloc'd; free both) and how many are not finite.
+tb_result joints_read_poses(tb_world* world, const scene_instance* inst, tb_vec3** pos,
+                            tb_quat** rot, uint32_t* nan);
+/// Every joint of the world: how many, the largest distance between a joint's two world
+/// anchors (m; every kind the scenes use holds them together) and how many broke.
+typedef struct joints_census {
+    uint32_t count, broken;
+    double max_gap;
+} joints_census;
+tb_result joints_take_census(tb_world* world, joints_census* out);
+
+/* joints_chain.c */
+tb_result chain_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result chain_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                      scene_checks* out);
+tb_result joint_grid_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result joint_grid_check(tb_world* world, const scene_instance* inst, uint32_t steps,
+                           float dt, scene_checks* out);
+
+/* joints_bridge.c */
+tb_result bridge_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result bridge_check(tb_world* world, const scene_instance* inst, uint32_t steps, float dt,
+                       scene_checks* out);
+
+/* joints_ragdolls.c */
+tb_result ragdolls_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result ragdolls_check(tb_world* world, const scene_instance* inst, uint32_t steps,
+                         float dt, scene_checks* out);
+
+/* joints_vehicles.c */
+tb_result vehicles_build(tb_world* world, const scene_params* params, scene_instance** out);
+tb_result vehicles_check(tb_world* world, const scene_instance* inst, uint32_t steps,
+                         float dt, scene_checks* out);
 
 #endif

@@ -268,6 +268,25 @@ static const scene scenes[] = {
     { "heightfield", "the terrain scene on a heightfield of the same 131,072 triangles "
                      "(cells found by row and column, no tree)", 1.0f / 60.0f, 10000, 600,
       heightfield_build, pile_check, instance_free },
+    { "chain", "N capsule links joined end to end by ball joints, hung from a static post "
+               "and let go level, the last link 100 times heavier; checks nan, max_gap, "
+               "stretch, length_error, broken", 1.0f / 60.0f, 20, 600,
+      chain_build, chain_check, instance_free },
+    { "joint_grid", "a vertical net of floor(sqrt N)^2 spheres joined to their right and "
+                    "lower neighbours by ball joints, the top row static; checks nan, sag "
+                    "of the centre, max_gap, broken", 1.0f / 60.0f, 10000, 300,
+      joint_grid_build, joint_grid_check, instance_free },
+    { "bridge", "N planks hinged end to end between two static posts, a heavy box dropped "
+                "on the middle; checks nan, sag of the middle plank, max_gap, max_twist, "
+                "broken, load_fell", 1.0f / 60.0f, 20, 600, bridge_build, bridge_check, instance_free },
+    { "ragdolls", "N ragdolls of 11 bodies (ball joints, limited hinges at elbows and "
+                  "knees) dropped leaning onto a plane; checks nan, below_ground, max_gap, "
+                  "max_twist, broken, resting, max_penetration", 1.0f / 60.0f, 100, 600,
+      ragdolls_build, ragdolls_check, instance_free },
+    { "vehicles", "N cars of a box chassis and four cylinder wheels on motored hinges "
+                  "driving on a plane; checks nan, mean_speed (+x, m/s), min and max, "
+                  "flipped, max_gap, max_twist, broken", 1.0f / 60.0f, 100, 600,
+      vehicles_build, vehicles_check, instance_free },
 };
 
 #define SCENE_COUNT ((uint32_t)(sizeof scenes / sizeof scenes[0]))

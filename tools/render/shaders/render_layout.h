@@ -71,6 +71,24 @@
 #define TR_CONTACT_NORMAL_G 230
 #define TR_CONTACT_NORMAL_B 0
 
+/* Joint overlay (joints.vert, render_joints.c). The host writes each joint's three
+ * segments every frame, LINE_LIST, as vec4s (the point, and in w TR_JOINT_ARM or
+ * TR_JOINT_GAP): body a's centre to its anchor and b's anchor to b's centre (arms, dark
+ * blue), and anchor to anchor (the gap, red: the joint's error, or a distance joint's rod).
+ * Drawn over the scene without the depth test, so a chain or ragdoll shows as its skeleton
+ * through its bodies. Binding past the mesh lists'. */
+#define TR_BIND_JOINT_LINES (TB_BIND_COUNT + 4)
+#define TR_JOINT_VERTICES_PER_JOINT 6
+#define TR_JOINT_ARM 0.0
+#define TR_JOINT_GAP 1.0
+/* Colours in exact 8-bit steps, neither of them the contact overlay's. */
+#define TR_JOINT_ARM_R 20
+#define TR_JOINT_ARM_G 40
+#define TR_JOINT_ARM_B 140
+#define TR_JOINT_GAP_R 230
+#define TR_JOINT_GAP_G 20
+#define TR_JOINT_GAP_B 20
+
 /* 128 bytes, the least every device allows; the same block in every stage. */
 TR_STRUCT(tr_push) {
     TR_MAT4(view_proj);   /* column-major, Vulkan clip space */
