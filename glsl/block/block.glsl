@@ -89,6 +89,22 @@ bool block_is_b(uint e)
     return (e & TB_BLOCK_SIDE_B) != 0u;
 }
 
+// A joint's entry: its slot | TB_BLOCK_JOINT, and the side as a contact's.
+bool block_is_joint(uint entry)
+{
+    return (entry & TB_BLOCK_JOINT) != 0u;
+}
+
+uint block_joint_of(uint entry)
+{
+    return entry & ~(TB_BLOCK_JOINT | TB_BLOCK_SIDE_B);
+}
+
+uint block_joint_entry(uint j, bool is_b)
+{
+    return j | TB_BLOCK_JOINT | (is_b ? TB_BLOCK_SIDE_B : 0u);
+}
+
 // Points of pair p.
 uint block_points(uint p)
 {
@@ -143,7 +159,7 @@ vec3 block_contact_force(uint i)
     uint first = block_start[i], n = block_fill[i];
     for (uint e = 0u; e < n; e++) {
         uint entry = block_entries[first + e].x;
-        if ((entry & TB_BLOCK_JOINT) != 0u) continue;   // joints: block/guess
+        if (block_is_joint(entry)) continue;   // joints: block/guess
         uint p = block_pair(entry), k = block_point_of(entry);
         vec3 l = manifolds[p].impulse[k].xyz / h;
         vec3 f = manifolds[p].normal.xyz * l.x + constraints[p].tangent1.xyz * l.y

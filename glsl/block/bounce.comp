@@ -95,7 +95,7 @@ void bounce_body(uvec4 listed, uint order)
     for (uint pass = 0u; pass < 2u; pass++) {
         for (uint at = listed.y; at < listed.y + listed.z; at++) {
             uvec2 entry = block_entries[at];
-            if ((entry.x & TB_BLOCK_JOINT) != 0u) continue;   // joints do not bounce
+            if (block_is_joint(entry.x)) continue;   // joints do not bounce
             uint p = block_pair(entry.x), k = block_point_of(entry.x);
             float e, before;
             if (!bounces(p, k, e, before)) continue;

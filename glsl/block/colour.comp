@@ -42,8 +42,7 @@ void main()
     uint first = block_start[i], n = block_fill[i];
     for (uint k = 0u; k < n; k++) {
         uvec2 entry = block_entries[first + k];
-        bool joint = (entry.x & TB_BLOCK_JOINT) != 0u;
-        if (!joint && block_point_of(entry.x) != 0u) continue;   // one look per pair
+        if (!block_is_joint(entry.x) && block_point_of(entry.x) != 0u) continue;   // one look per pair
         uint o = entry.y;
         uint word = body_colour[o];
         if (word == TB_BLOCK_NOT_SOLVED) continue;

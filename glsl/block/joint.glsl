@@ -26,21 +26,6 @@
 
 #include "block.glsl"
 
-bool block_is_joint(uint entry)
-{
-    return (entry & TB_BLOCK_JOINT) != 0u;
-}
-
-uint block_joint_of(uint entry)
-{
-    return entry & ~(TB_BLOCK_JOINT | TB_BLOCK_SIDE_B);
-}
-
-uint block_joint_entry(uint j, bool is_b)
-{
-    return j | TB_BLOCK_JOINT | (is_b ? TB_BLOCK_SIDE_B : 0u);
-}
-
 uint joint_kind(tb_gpu_joint jt)
 {
     return jt.info.z & 0xffu;
@@ -196,7 +181,7 @@ void joint_point_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state
 {
     float k = s.linear.w;
     for (int i = 0; i < 3; i++) {
-        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        vec3 u = mat3(1.0)[i];   // world axis i
         float lambda = s.linear[i];
         float ki = k;
         joint_hold(w, joint_point_row(p, u, p.d[i]), lambda, ki, unit, p.rb);
@@ -211,7 +196,7 @@ void joint_lock_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state 
     vec3 theta = rotation_vector(quat_mul(p.fb, vec4(-p.fa.xyz, p.fa.w)));
     float k = s.angular.w;
     for (int i = 0; i < 3; i++) {
-        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        vec3 u = mat3(1.0)[i];   // world axis i
         float lambda = s.angular[i];
         float ki = k;
         joint_row r = joint_turn_row(u, theta[i]);
@@ -231,7 +216,7 @@ void joint_align_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state
     float cosine = dot(xa, xb);
     float k = s.angular.w;
     for (int i = 0; i < 3; i++) {
-        vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);
+        vec3 u = mat3(1.0)[i];   // world axis i
         vec3 ab = cosine * u - xb[i] * xa, aa = -(cosine * u - xa[i] * xb);
         float lambda = s.angular[i];
         float ki = k;

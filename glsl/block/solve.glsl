@@ -170,24 +170,21 @@ struct item {
 // joints): p is the joint's slot and q is not loaded. The joints' code is left out of the
 // sweeps of worlds without joints: in them it took registers from the contacts' and
 // slowed the sweep of 100k boxes 2.3 times (H200: the deep pile's solve 4.9 -> 11.3 ms).
+bool item_is_joint(uint entry)
+{
 #ifdef TB_BLOCK_JOINTS
-bool item_is_joint(uint entry)
-{
     return block_is_joint(entry);
-}
 #else
-bool item_is_joint(uint entry)
-{
     return false;
-}
 #endif
+}
 
 item item_of(uvec2 entry)
 {
     item it;
     it.entry = entry.x;
     bool joint = item_is_joint(entry.x);
-    it.p = joint ? (entry.x & ~(TB_BLOCK_JOINT | TB_BLOCK_SIDE_B)) : block_pair(entry.x);
+    it.p = joint ? block_joint_of(entry.x) : block_pair(entry.x);
     it.k = joint ? 0u : block_point_of(entry.x);
     it.other = entry.y;
     it.other_colour = body_colour[it.other];

@@ -170,6 +170,17 @@ tb_result tb_joint_get_bodies(const tb_world* cw, tb_joint_id id, tb_body_id* a,
     return TB_OK;
 }
 
+/* A live joint's def `d` with its limit or motor changed: checked, then in its record and
+ * on its way to the GPU; refused, the joint stays as it was. */
+static tb_result replace_def(tb_world* w, tb_joint_record* j, uint32_t slot, const tb_joint_def* d)
+{
+    tb_result r;
+    if ((r = check_kind(w, d, 0)) || (r = check_numbers(w, d, 0))) return r;
+    j->def = *d;
+    tb_joints_changed(&w->joints, slot);
+    return TB_OK;
+}
+
 tb_result tb_joint_set_motor(tb_world* w, tb_joint_id id, int32_t enable, float speed,
                              float max_force)
 {
@@ -181,10 +192,7 @@ tb_result tb_joint_set_motor(tb_world* w, tb_joint_id id, int32_t enable, float 
     d.enable_motor = enable;
     d.motor_speed = speed;
     d.max_motor_force = max_force;
-    if ((r = check_kind(w, &d, 0)) || (r = check_numbers(w, &d, 0))) return r;
-    j->def = d;
-    tb_joints_changed(&w->joints, slot);
-    return TB_OK;
+    return replace_def(w, j, slot, &d);
 }
 
 tb_result tb_joint_set_limit(tb_world* w, tb_joint_id id, int32_t enable, float lower,
@@ -198,10 +206,7 @@ tb_result tb_joint_set_limit(tb_world* w, tb_joint_id id, int32_t enable, float 
     d.enable_limit = enable;
     d.lower = lower;
     d.upper = upper;
-    if ((r = check_kind(w, &d, 0)) || (r = check_numbers(w, &d, 0))) return r;
-    j->def = d;
-    tb_joints_changed(&w->joints, slot);
-    return TB_OK;
+    return replace_def(w, j, slot, &d);
 }
 
 /* The slots of `count` ids, all valid, or an error. */

@@ -158,12 +158,12 @@ static tb_result per_joint(const tb_block_solver* s, tb_pass_list* list, VkPipel
 tb_result tb_block_prepare_joints(tb_block_solver* s)
 {
     tb_result r = TB_OK;
-    if (!s->joint_count) r = tb_pipeline_create_once(s->pipelines, "block/joint_count",
-                                                     TB_WORKGROUP_SIZE, &s->joint_count);
-    if (!r && !s->joint_fill) r = tb_pipeline_create_once(s->pipelines, "block/joint_fill",
-                                                          TB_WORKGROUP_SIZE, &s->joint_fill);
-    if (!r && !s->joint_start) r = tb_pipeline_create_once(s->pipelines, "block/joint_start",
-                                                           TB_WORKGROUP_SIZE, &s->joint_start);
+    r = tb_pipeline_create_once(s->pipelines, "block/joint_count", TB_WORKGROUP_SIZE,
+                                &s->joint_count);
+    if (!r) r = tb_pipeline_create_once(s->pipelines, "block/joint_fill", TB_WORKGROUP_SIZE,
+                                        &s->joint_fill);
+    if (!r) r = tb_pipeline_create_once(s->pipelines, "block/joint_start", TB_WORKGROUP_SIZE,
+                                        &s->joint_start);
     if (!r) r = tb_pipeline_create_once(s->pipelines, "block/solve_joints",
                                         TB_SOLVER_WORKGROUP_SIZE, &s->solve_joints);
     /* The tail's own sweep only where block/solve_tail is made (tb_block_init). */
