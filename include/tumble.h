@@ -721,8 +721,31 @@ typedef enum tb_joint_kind {
                            ///< by a spring (spring on); any rotation
     TB_JOINT_SLIDER = 5,   ///< prismatic: frames held, the anchors move apart only along the
                            ///< frames' x axis (limit in m, motor in m/s)
+    TB_JOINT_CONE_TWIST = 6, ///< the anchors meet; b's frame's x axis stays within
+                           ///< `cone_angle` of a's (the swing), and b turns about it (the
+                           ///< twist) within lower..upper rad when the limit is on: shoulders,
+                           ///< hips, necks
+    TB_JOINT_SIX_DOF = 7,  ///< each of six coordinates of b's frame in a's is free, limited
+                           ///< or locked (`axes`): the offset of b's anchor from a's along a's
+                           ///< frame's x, y and z axes (m), then the turn from a's frame to
+                           ///< b's about those axes (rad: the components of its rotation
+                           ///< vector, so a turn about one axis is that angle)
     TB_JOINT_KIND_FORCE_32 = 0x7fffffff
 } tb_joint_kind;
+
+/// What a 6-dof joint does with one of its coordinates.
+typedef enum tb_joint_axis_mode {
+    TB_JOINT_AXIS_LOCKED = 0,  ///< held at 0 (the default: a 6-dof joint starts as a weld)
+    TB_JOINT_AXIS_FREE = 1,    ///< anything
+    TB_JOINT_AXIS_LIMITED = 2, ///< within [lower, upper] (turns within [-pi, pi])
+    TB_JOINT_AXIS_MODE_FORCE_32 = 0x7fffffff
+} tb_joint_axis_mode;
+
+/// One coordinate of a 6-dof joint.
+typedef struct tb_joint_axis {
+    tb_joint_axis_mode mode;
+    float lower, upper;
+} tb_joint_axis;
 
 typedef struct tb_joint_def {
     /// Required.
@@ -737,18 +760,27 @@ typedef struct tb_joint_def {
     tb_quat frame_a, frame_b;
     /// Distance joints: the anchors' distance, m, >= 0. Default 1.
     float length;
-    /// Limit (hinge: rad, within [-pi, pi]; slider and distance: m), lower <= upper.
-    /// Default off, 0 and 0.
+    /// Limit (hinge and cone-twist's twist: rad, within [-pi, pi]; slider and distance: m),
+    /// lower <= upper. Default off, 0 and 0.
     int32_t enable_limit;
     float lower, upper;
     /// Motor (hinges: target rad/s of b about the axis relative to a, most torque N m;
     /// sliders: m/s, N). Default off, 0 and 0.
     int32_t enable_motor;
     float motor_speed, max_motor_force;
-    /// Distance joints: a spring to `length` instead of a rod, Hz (> 0) and damping ratio
-    /// (>= 0). Default off, 1 Hz, 0.
+    /// A spring, Hz (> 0) and damping ratio (>= 0), on the bodies' effective mass (or
+    /// moment): distance joints pull to `length` with it instead of being a rod; hinges to
+    /// the angle `spring_target` (rad, within [-pi, pi]) and sliders to the offset
+    /// `spring_target` (m) along the axis, beside a limit and a motor if they have them.
+    /// Default off, 1 Hz, 0, target 0.
     int32_t enable_spring;
-    float spring_hertz, spring_damping_ratio;
+    float spring_hertz, spring_damping_ratio, spring_target;
+    /// Cone-twist joints: the largest angle between the frames' x axes, rad, in [0, pi].
+    /// Default pi/4.
+    float cone_angle;
+    /// 6-dof joints: the three offsets along a's frame's axes, then the three turns about
+    /// them. Default all locked.
+    tb_joint_axis axes[6];
     /// Whether the two bodies collide with each other. Default 0 (they do not).
     int32_t collide_connected;
     /// The joint breaks (stops holding; tb_joint_read_forces reports it) once the force
@@ -784,10 +816,16 @@ TB_API tb_result tb_joint_get_bodies(const tb_world* world, tb_joint_id joint,
 /// is on. Hinges and sliders only.
 TB_API tb_result tb_joint_set_motor(tb_world* world, tb_joint_id joint, int32_t enable,
                                     float speed, float max_force);
-/// Between steps: the limit and whether it is on (lower <= upper). Hinges, sliders and
-/// distance joints.
+/// Between steps: the limit and whether it is on (lower <= upper). Hinges, sliders,
+/// distance joints and cone-twist joints (the twist).
 TB_API tb_result tb_joint_set_limit(tb_world* world, tb_joint_id joint, int32_t enable,
                                     float lower, float upper);
+/// Between steps: the spring (hertz > 0, damping ratio >= 0) and what it pulls to (hinges:
+/// the angle, rad; sliders: the offset, m; distance joints: the length, m, which is the
+/// joint's `length`), and whether it is on. Hinges, sliders and distance joints; a hinge's
+/// spring with its target moved each step is a position servo.
+TB_API tb_result tb_joint_set_spring(tb_world* world, tb_joint_id joint, int32_t enable,
+                                     float hertz, float damping_ratio, float target);
 
 /// What `count` joints held in the last step: the force (N) and torque (N m, about b's
 /// anchor) each applied to its body b, world frame, and whether it has broken (1) (any

@@ -63,7 +63,7 @@ static void test_shape_layout(void** state)
 static void test_joint_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_joint), 112);
+    assert_int_equal(sizeof(tb_gpu_joint), 176);
     assert_int_equal(offsetof(tb_gpu_joint, anchor_a), 16);
     assert_int_equal(offsetof(tb_gpu_joint, frame_b), 64);
     assert_int_equal(offsetof(tb_gpu_joint, motor), 96);

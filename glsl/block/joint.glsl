@@ -229,32 +229,37 @@ void joint_align_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state
 }
 
 // A limit on a coordinate q (the row r's value is q): lower <= q <= upper, one side at a
-// time (the nearer), its multiplier signed along r. Equal bounds lock the coordinate. Its
-// stiffness stays in the Newton step while the limit is engaged (it pushed last step, or
-// has pushed in this one: tb_gpu_joint_state.info.z), even in a sweep where its force drops
-// to nothing, as a contact's does: without it a rope pulled taut went slack in one sweep,
-// fell freely in the next, came back taut with a larger error, and blew up.
+// time (the nearer), its multiplier lambda signed along r. Equal bounds lock the
+// coordinate. Its stiffness stays in the Newton step while the limit is engaged (bit `bit`
+// of `engaged`: it pushed last step, or has pushed in this one), even in a sweep where its
+// force drops to nothing, as a contact's does: without it a rope pulled taut went slack in
+// one sweep, fell freely in the next, came back taut with a larger error, and blew up.
 void joint_limit_row(inout joint_work w, joint_row r, float lower, float upper,
-                     inout tb_gpu_joint_state s, float unit, vec3 rb)
+                     inout float lambda, inout float k, inout uint engaged, uint bit,
+                     float unit, vec3 rb)
 {
     float q = r.C;
-    float lambda = s.axial.x, k = s.axial.y;
-    bool engaged = (s.info.z & 1u) != 0u;
+    bool held = (engaged & bit) != 0u;
     if (upper - lower < 1e-6) {
         r.C = q - lower;
         joint_hold(w, r, lambda, k, unit, rb);
     } else if (q - lower < upper - q) {
         r.C = q - lower;   // pushes q up: a force >= 0 along r
         lambda = max(lambda, 0.0);
-        joint_apply(w, r, lambda, k, unit, 0.0, 1e30, engaged || r.C < 0.0, rb);
+        joint_apply(w, r, lambda, k, unit, 0.0, 1e30, held || r.C < 0.0, rb);
     } else {
         r.C = q - upper;   // pushes q down: a force <= 0 along r
         lambda = min(lambda, 0.0);
-        joint_apply(w, r, lambda, k, unit, -1e30, 0.0, engaged || r.C > 0.0, rb);
+        joint_apply(w, r, lambda, k, unit, -1e30, 0.0, held || r.C > 0.0, rb);
     }
-    if (w.dual && lambda != 0.0) s.info.z |= 1u;
-    s.axial.x = lambda;
-    s.axial.y = k;
+    if (w.dual && lambda != 0.0) engaged |= bit;
+}
+
+// The limit of axial.xy (a hinge's, slider's or distance joint's; a cone's twist).
+void joint_axial_limit_row(inout joint_work w, joint_row r, float lower, float upper,
+                           inout tb_gpu_joint_state s, float unit, vec3 rb)
+{
+    joint_limit_row(w, r, lower, upper, s.axial.x, s.axial.y, s.info.z, 1u, unit, rb);
 }
 
 // A motor: the coordinate's change over the step (r's value) against speed * dt, with a
@@ -267,6 +272,22 @@ void joint_motor_row(inout joint_work w, joint_row r, float speed, float most,
     joint_apply(w, r, lambda, k, unit, -most, most, true, rb);
     s.axial.z = lambda;
     s.axial.w = k;
+}
+
+// A spring of the joint's frequency and damping ratio on the bodies' effective mass (or
+// moment, unit h^2) along row r, whose value is the coordinate's distance from where the
+// spring pulls to and `moved` its change over the step so far; stepped implicitly, its
+// stiffness k and damping c over the step act as k + c / dt: a row of multiplier f at
+// C = 0 with that stiffness.
+void joint_spring_row(inout joint_work w, tb_gpu_joint jt, joint_row r, float moved, float unit,
+                      vec3 rb)
+{
+    float h = block_h(), omega = 6.2831853 * jt.anchor_b.w;
+    float mass = unit * h * h;
+    float k = mass * omega * omega, c = 2.0 * mass * jt.limit.z * omega;
+    float lambda = -(k * r.C + c * moved / h), stiffness = k + c / h;
+    r.C = 0.0;
+    joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
 }
 
 // The twist of B about A's x axis, in (-pi, pi].
@@ -282,13 +303,17 @@ void joint_hinge_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     joint_point_rows(w, p, s, unit.x);
     joint_align_rows(w, p, s, unit.y);
     vec3 x = quat_rotate(p.fa, vec3(1.0, 0.0, 0.0));
-    if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
-        float angle = joint_twist(p);
-        joint_limit_row(w, joint_turn_row(x, angle), jt.limit.x, jt.limit.y, s, unit.y, p.rb);
-    }
+    float angle = joint_twist(p), turned = dot(p.vb - p.va, x);
+    if (joint_has(jt, TB_GPU_JOINT_LIMIT))
+        joint_axial_limit_row(w, joint_turn_row(x, angle), jt.limit.x, jt.limit.y, s, unit.y,
+                              p.rb);
     if (joint_has(jt, TB_GPU_JOINT_MOTOR))
-        joint_motor_row(w, joint_turn_row(x, dot(p.vb - p.va, x)), jt.motor.x, jt.motor.y, s,
-                        unit.y, p.rb);
+        joint_motor_row(w, joint_turn_row(x, turned), jt.motor.x, jt.motor.y, s, unit.y, p.rb);
+    if (joint_has(jt, TB_GPU_JOINT_SPRING)) {
+        float off = angle - jt.anchor_a.w;
+        off -= 6.2831853 * round(off / 6.2831853);   // the near way round
+        joint_spring_row(w, jt, joint_turn_row(x, off), turned, unit.y, p.rb);
+    }
 }
 
 void joint_slider_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
@@ -303,12 +328,83 @@ void joint_slider_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     s.linear.xy = vec2(ly, lz);
     s.linear.w = max(ky, kz);
     joint_lock_rows(w, p, s, unit.y);
+    float offset = dot(x, p.d), moved = dot(x, p.dpb - p.dpa);
     if (joint_has(jt, TB_GPU_JOINT_LIMIT))
-        joint_limit_row(w, joint_frame_row(p, x, dot(x, p.d)), jt.limit.x, jt.limit.y, s,
-                        unit.x, p.rb);
+        joint_axial_limit_row(w, joint_frame_row(p, x, offset), jt.limit.x, jt.limit.y, s,
+                              unit.x, p.rb);
     if (joint_has(jt, TB_GPU_JOINT_MOTOR))
-        joint_motor_row(w, joint_frame_row(p, x, dot(x, p.dpb - p.dpa)), jt.motor.x,
-                        jt.motor.y, s, unit.x, p.rb);
+        joint_motor_row(w, joint_frame_row(p, x, moved), jt.motor.x, jt.motor.y, s, unit.x,
+                        p.rb);
+    if (joint_has(jt, TB_GPU_JOINT_SPRING))
+        joint_spring_row(w, jt, joint_frame_row(p, x, offset - jt.anchor_a.w), moved, unit.x,
+                         p.rb);
+}
+
+// A cone-twist joint: the anchors meet (the point rows), B's x axis stays within the cone
+// of half angle limit.w about A's (the swing: the angle between them, a turn about their
+// cross product), and, with the limit on, the twist of B about its x axis stays within the
+// limit (its rate is taken about the two axes' mean).
+void joint_cone_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
+                     inout tb_gpu_joint_state s, vec2 unit)
+{
+    joint_point_rows(w, p, s, unit.x);
+    vec3 xa = quat_rotate(p.fa, vec3(1.0, 0.0, 0.0)), xb = quat_rotate(p.fb, vec3(1.0, 0.0, 0.0));
+    vec3 n = cross(xa, xb);
+    float sine = length(n), swing = atan(sine, dot(xa, xb));
+    if (sine > 1e-6) {
+        // lower -4: below any swing by more than the cone is above it, so the limit's upper
+        // side is always the nearer one.
+        joint_row r = joint_turn_row(n / sine, swing);
+        r.bend = vec2(1.0);
+        joint_limit_row(w, r, -4.0, jt.limit.w, s.axial.z, s.axial.w, s.info.z, 2u, unit.y, p.rb);
+    }
+    if (!joint_has(jt, TB_GPU_JOINT_LIMIT)) return;
+    vec3 mean = xa + xb;
+    vec3 axis = dot(mean, mean) > 1e-6 ? normalize(mean) : xb;
+    joint_axial_limit_row(w, joint_turn_row(axis, joint_twist(p)), jt.limit.x, jt.limit.y, s,
+                          unit.y, p.rb);
+}
+
+// What a 6-dof joint does with its axis i (0-2 offsets, 3-5 turns).
+uint joint_axis_mode(tb_gpu_joint jt, int i)
+{
+    return (jt.info.z >> (TB_GPU_JOINT_AXIS_SHIFT + 2 * i)) & 3u;
+}
+
+// One axis of a 6-dof joint: row r held at 0 (locked) or within [lower, upper] (limited),
+// its multiplier lambda, its stiffness taken from and raised into k, its engaged flag bit
+// `bit` of the state's info.z.
+void joint_axis_row(inout joint_work w, joint_row r, uint mode, float lower, float upper,
+                    inout float lambda, inout float k, inout uint engaged, uint bit,
+                    float unit, vec3 rb)
+{
+    float ki = k;
+    if (mode == TB_GPU_JOINT_AXIS_LOCKED)
+        joint_hold(w, r, lambda, ki, unit, rb);
+    else if (mode == TB_GPU_JOINT_AXIS_LIMITED)
+        joint_limit_row(w, r, lower, upper, lambda, ki, engaged, bit, unit, rb);
+    k = max(k, ki);
+}
+
+// A 6-dof joint: the offset d along A's axes, and the turn from A to B as the rotation
+// vector of A^-1 B (A's axes), each axis free, limited or locked.
+void joint_six_dof_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
+                        inout tb_gpu_joint_state s, vec2 unit)
+{
+    vec3 theta = rotation_vector(quat_mul(vec4(-p.fa.xyz, p.fa.w), p.fb));
+    float kl = s.linear.w, ka = s.angular.w;
+    for (int i = 0; i < 3; i++) {
+        vec3 u = quat_rotate(p.fa, mat3(1.0)[i]);   // A's axis i
+        joint_axis_row(w, joint_frame_row(p, u, dot(u, p.d)), joint_axis_mode(jt, i),
+                       jt.lower[i], jt.upper[i], s.linear[i], kl, s.info.z, 1u << i, unit.x,
+                       p.rb);
+        joint_row r = joint_turn_row(u, theta[i]);
+        r.bend = vec2(0.5);
+        joint_axis_row(w, r, joint_axis_mode(jt, i + 3), jt.turn_lower[i], jt.turn_upper[i],
+                       s.angular[i], ka, s.info.z, 8u << i, unit.y, p.rb);
+    }
+    s.linear.w = kl;
+    s.angular.w = ka;
 }
 
 // A distance joint's row along the line between the anchors.
@@ -320,31 +416,17 @@ void joint_distance_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     joint_row r = joint_point_row(p, n, len);
     float rest = jt.anchor_a.w;
     if (joint_has(jt, TB_GPU_JOINT_SPRING)) {
-        // A spring of the joint's frequency and damping ratio on the bodies' effective mass,
-        // stepped implicitly: stiffness k and damping c over the step act as k + c / dt.
-        float h = block_h(), omega = 6.2831853 * jt.anchor_b.w;
-        float mass = unit.x * h * h;
-        float k = mass * omega * omega, c = 2.0 * mass * jt.limit.z * omega;
         float moved = dot(n, (p.dpb + cross(p.vb, p.rb)) - (p.dpa + cross(p.va, p.ra)));
-        float stiffness = k + c / h;
-        float f = -(k * (len - rest) + c * moved / h);
-        // As a row of multiplier f + stiffness C and stiffness `stiffness` at C = 0.
-        float lambda = f, kk = stiffness;
-        r.C = 0.0;
-        if (w.dual) {
-            w.force += f * r.lb;
-            w.torque += f * (r.ab - cross(p.rb, r.lb));
-        } else {
-            joint_apply(w, r, lambda, kk, unit.x, -1e30, 1e30, true, p.rb);
-        }
+        r.C = len - rest;
+        joint_spring_row(w, jt, r, moved, unit.x, p.rb);
         if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
             r.C = len;
-            joint_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
+            joint_axial_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
         }
         return;
     }
     if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
-        joint_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
+        joint_axial_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
         return;
     }
     r.C = len - rest;
@@ -374,6 +456,10 @@ void joint_rows(inout joint_work w, uint j, inout tb_gpu_joint_state s, vec3 dpa
         joint_slider_rows(w, jt, p, s, unit);
     } else if (kind == TB_GPU_JOINT_DISTANCE) {
         joint_distance_rows(w, jt, p, s, unit);
+    } else if (kind == TB_GPU_JOINT_CONE) {
+        joint_cone_rows(w, jt, p, s, unit);
+    } else if (kind == TB_GPU_JOINT_SIX_DOF) {
+        joint_six_dof_rows(w, jt, p, s, unit);
     }
 }
 
@@ -390,7 +476,8 @@ bool joint_holds(uint j)
 // force into the next step's prediction (tb_gpu_joint_state.held_force, held_torque).
 bool joint_may_hold(uint kind)
 {
-    return kind == TB_GPU_JOINT_BALL || kind == TB_GPU_JOINT_HINGE || kind == TB_GPU_JOINT_FIXED;
+    return kind == TB_GPU_JOINT_BALL || kind == TB_GPU_JOINT_HINGE || kind == TB_GPU_JOINT_FIXED ||
+           kind == TB_GPU_JOINT_CONE;
 }
 
 // What joint j's prediction holds body i with (held_force and held_torque): the force on

@@ -8,6 +8,20 @@
 // (the slot was reused: the generations differ) starts from nothing.
 #include "joint.glsl"
 
+// The limits that pushed last step, engaged from the step's start (joint_limit_row's bits).
+uint engaged_limits(uint kind, tb_gpu_joint_state s)
+{
+    if (kind == TB_GPU_JOINT_SIX_DOF) {
+        uint bits = 0u;
+        for (int i = 0; i < 3; i++) {
+            if (s.linear[i] != 0.0) bits |= 1u << i;
+            if (s.angular[i] != 0.0) bits |= 8u << i;
+        }
+        return bits;
+    }
+    return (s.axial.x != 0.0 ? 1u : 0u) | (kind == TB_GPU_JOINT_CONE && s.axial.z != 0.0 ? 2u : 0u);
+}
+
 void main()
 {
     uint j = gl_GlobalInvocationID.x;
@@ -54,9 +68,10 @@ void main()
     vec3 angular = predict ? vec3(0.0) : (joint_may_hold(kind) ? torque : s.angular.xyz) * warm;
     s.linear = vec4(linear, max(unit.x, s.linear.w * carry));
     s.angular = vec4(angular, max(unit.y, s.angular.w * carry));
-    float axial_unit = kind == TB_GPU_JOINT_HINGE ? unit.y : unit.x;
+    bool turns = kind == TB_GPU_JOINT_HINGE || kind == TB_GPU_JOINT_CONE;
+    float axial_unit = turns ? unit.y : unit.x;
     s.axial = vec4(s.axial.x * warm, max(axial_unit, s.axial.y * carry),
                    s.axial.z * warm, max(axial_unit, s.axial.w * carry));
-    s.info.z = s.axial.x != 0.0 ? 1u : 0u;   // the limit pushed last step: engaged
+    s.info.z = engaged_limits(kind, s);
     joint_states[j] = s;
 }

@@ -213,8 +213,10 @@ void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
     bool is_b = block_is_b(it.entry);
 #ifdef TB_BLOCK_JOINTS
     if (item_is_joint(it.entry)) {
-        if (is_b) add_joint(e, it.p, true, it.dp, it.v, my_dp, my_v);
-        else add_joint(e, it.p, false, my_dp, my_v, it.dp, it.v);
+        // One call with the sides chosen, not one per side: the joints' rows are long, and
+        // lavapipe's compiler takes seconds for each copy.
+        add_joint(e, it.p, is_b, is_b ? it.dp : my_dp, is_b ? it.v : my_v,
+                  is_b ? my_dp : it.dp, is_b ? my_v : it.v);
         return;
     }
 #endif
@@ -233,8 +235,9 @@ void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
     if (!block_moved_before(it.other_colour, order)) return;
 #ifdef TB_BLOCK_JOINTS
     if (item_is_joint(it.entry)) {
-        if (block_is_b(it.entry)) joint_dual(it.p, it.dp, it.v, my_dp, my_v, last);
-        else joint_dual(it.p, my_dp, my_v, it.dp, it.v, last);
+        bool is_b = block_is_b(it.entry);
+        joint_dual(it.p, is_b ? it.dp : my_dp, is_b ? it.v : my_v, is_b ? my_dp : it.dp,
+                   is_b ? my_v : it.v, last);
         return;
     }
 #endif

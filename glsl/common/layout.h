@@ -280,10 +280,19 @@ TB_STRUCT(tb_gpu_counters) {
 #define TB_GPU_JOINT_FIXED      TB_U(3)
 #define TB_GPU_JOINT_DISTANCE   TB_U(4)
 #define TB_GPU_JOINT_SLIDER     TB_U(5)
+#define TB_GPU_JOINT_CONE       TB_U(6)
+#define TB_GPU_JOINT_SIX_DOF    TB_U(7)
 #define TB_GPU_JOINT_LIMIT      TB_U(0x100) /* flags, beside the kind: the limit is on */
 #define TB_GPU_JOINT_MOTOR      TB_U(0x200) /* the motor is on */
-#define TB_GPU_JOINT_SPRING     TB_U(0x400) /* the distance joint is a spring */
+#define TB_GPU_JOINT_SPRING     TB_U(0x400) /* a spring (distance: to the rest length instead of
+                                               a rod; hinge, slider: to the target) */
 #define TB_GPU_JOINT_BREAKABLE  TB_U(0x800) /* breaks past motor.zw */
+/* A 6-dof joint's axis i (0-2 along A's axes, 3-5 turns about them) is free, limited or
+ * locked: two bits of info.z from TB_GPU_JOINT_AXIS_SHIFT + 2 i. */
+#define TB_GPU_JOINT_AXIS_SHIFT   12
+#define TB_GPU_JOINT_AXIS_FREE    TB_U(0)
+#define TB_GPU_JOINT_AXIS_LIMITED TB_U(1)
+#define TB_GPU_JOINT_AXIS_LOCKED  TB_U(2)
 /* The slot of the filter table where the pair of body slots + 1 (lo < hi) is first looked
  * for; the next ones follow. */
 #define TB_JOINT_FILTER_HASH(lo, hi) \
@@ -292,25 +301,36 @@ TB_STRUCT(tb_gpu_joint) {
     TB_UVEC4 info;            /* x body a slot, y body b slot, z kind | TB_GPU_JOINT_* flags,
                                  w the joint's generation (a reused slot starts its state
                                  anew when it differs from the state's) */
-    TB_VEC4 anchor_a;         /* xyz the joint's point in a's frame (m), w rest length of a
-                                 distance joint (m) */
+    TB_VEC4 anchor_a;         /* xyz the joint's point in a's frame (m), w what a spring pulls
+                                 to: a distance joint's rest length (m), a hinge's angle (rad),
+                                 a slider's offset (m) */
     TB_VEC4 anchor_b;         /* xyz in b's frame, w spring frequency (Hz) */
     TB_VEC4 frame_a;          /* quaternion: the joint frame in a's frame */
     TB_VEC4 frame_b;          /* in b's frame: the joint holds both frames together */
-    TB_VEC4 limit;            /* x lower, y upper (rad for a hinge, m for a slider or a
-                                 distance joint), z spring damping ratio, w unused */
+    TB_VEC4 limit;            /* x lower, y upper (rad for a hinge's or cone's twist, m for a
+                                 slider or a distance joint), z spring damping ratio, w the
+                                 cone's half angle (rad) */
     TB_VEC4 motor;            /* x target speed (rad/s, m/s), y most force or torque (N, N m),
                                  z break force (N), w break torque (N m) */
+    TB_VEC4 lower;            /* 6-dof: xyz the lower limits of the offset along A's axes (m),
+                                 w unused */
+    TB_VEC4 upper;            /* xyz their upper limits, w unused */
+    TB_VEC4 turn_lower;       /* xyz the lower limits of the turn about A's axes (rad: the
+                                 rotation vector of A^-1 B), w unused */
+    TB_VEC4 turn_upper;       /* xyz their upper limits, w unused */
 };
 /* What the GPU keeps of a joint from step to step, and what the host reads of it. */
 TB_STRUCT(tb_gpu_joint_state) {
-    TB_VEC4 linear;           /* xyz the multipliers of the point rows (ball, hinge, fixed: the
-                                 force on b along the world axes, N; slider:
-                                 x y along the frame's y and z axes), w their stiffness (N/m) */
+    TB_VEC4 linear;           /* xyz the multipliers of the point rows (ball, hinge, fixed,
+                                 cone: the force on b along the world axes, N; slider: x y
+                                 along A's y and z axes; 6-dof: along A's axes), w their
+                                 stiffness (N/m) */
     TB_VEC4 angular;          /* xyz the multipliers of the angular rows (the torque on b
-                                 about the world axes, N m), w their stiffness (N m/rad) */
-    TB_VEC4 axial;            /* x the limit's (a distance joint's) multiplier, signed along
-                                 the axis, y its stiffness, z the motor's, w its stiffness */
+                                 about the world axes, N m; 6-dof: about A's axes), w their
+                                 stiffness (N m/rad) */
+    TB_VEC4 axial;            /* x the limit's (a distance joint's, a cone's twist limit's)
+                                 multiplier, signed along the axis, y its stiffness, z the
+                                 motor's (a cone's swing limit's), w its stiffness */
     TB_VEC4 held_force;       /* a ball, hinge or weld whose force is about its bodies' weights
                                  (block/joint_start): xyz the force on b its point rows ended
                                  last step with (N, world), which the step predicts its bodies'
@@ -321,8 +341,9 @@ TB_STRUCT(tb_gpu_joint_state) {
                                  world), w unused */
     TB_VEC4 torque;           /* xyz all its torque on b about b's anchor (N m, world) */
     TB_UVEC4 info;            /* x the generation of the joint this state is of, y 1 once
-                                 broken, z 1 while the limit is engaged (it pushed last step
-                                 or in this one), w unused */
+                                 broken, z a bit for each limit engaged (it pushed last step
+                                 or in this one: bit 0 the limit of axial.x, 1 a cone's swing;
+                                 6-dof: bit i axis i), w unused */
 };
 
 /* A body as the contact solver sees it, in one 96-byte record so a constraint touches three

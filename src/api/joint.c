@@ -19,6 +19,7 @@ tb_joint_def tb_default_joint_def(void)
     d.frame_b = (tb_quat){ 0, 0, 0, 1 };
     d.length = 1.0f;
     d.spring_hertz = 1.0f;
+    d.cone_angle = (float)GLM_PI_4;
     d.internal_cookie = TB_DEF_COOKIE;
     return d;
 }
@@ -39,19 +40,25 @@ static tb_result bad(tb_world* w, uint32_t i, const char* what)
 static tb_result check_numbers(tb_world* w, const tb_joint_def* d, uint32_t i)
 {
     float numbers[] = { d->length, d->lower, d->upper, d->motor_speed, d->max_motor_force,
-                        d->spring_hertz, d->spring_damping_ratio, d->break_force,
-                        d->break_torque };
+                        d->spring_hertz, d->spring_damping_ratio, d->spring_target,
+                        d->cone_angle, d->break_force, d->break_torque };
     if (!tb_finite3(d->anchor_a) || !tb_finite3(d->anchor_b) ||
         !finite_all(numbers, (int)(sizeof numbers / sizeof numbers[0])))
-        return bad(w, i, "anchors, length, limits, motor, spring and break values must be finite");
+        return bad(w, i, "anchors, length, limits, motor, spring, cone and break values must "
+                   "be finite");
     if (!tb_coordinates_within(d->anchor_a, TB_MAX_COORDINATE) ||
         !tb_coordinates_within(d->anchor_b, TB_MAX_COORDINATE))
         return bad(w, i, "anchors must be within TB_MAX_COORDINATE of their bodies");
     if (d->length < 0) return bad(w, i, "length must be >= 0");
     if (d->enable_limit && d->lower > d->upper) return bad(w, i, "limit: lower > upper");
-    if (d->enable_limit && d->kind == TB_JOINT_HINGE &&
-        (d->lower < -PI_WITH_ROOM || d->upper > PI_WITH_ROOM))
-        return bad(w, i, "a hinge's limits must be within [-pi, pi]");
+    int turns = d->kind == TB_JOINT_HINGE || d->kind == TB_JOINT_CONE_TWIST;
+    if (d->enable_limit && turns && (d->lower < -PI_WITH_ROOM || d->upper > PI_WITH_ROOM))
+        return bad(w, i, "a hinge's or cone-twist's limits must be within [-pi, pi]");
+    if (d->enable_spring && d->kind == TB_JOINT_HINGE &&
+        (d->spring_target < -PI_WITH_ROOM || d->spring_target > PI_WITH_ROOM))
+        return bad(w, i, "a hinge's spring_target must be within [-pi, pi]");
+    if (d->kind == TB_JOINT_CONE_TWIST && !(d->cone_angle >= 0 && d->cone_angle <= PI_WITH_ROOM))
+        return bad(w, i, "cone_angle must be within [0, pi]");
     if (d->enable_limit && d->kind == TB_JOINT_DISTANCE && d->lower < 0)
         return bad(w, i, "a distance joint's lower limit must be >= 0");
     if (d->max_motor_force < 0) return bad(w, i, "max_motor_force must be >= 0");
@@ -62,22 +69,44 @@ static tb_result check_numbers(tb_world* w, const tb_joint_def* d, uint32_t i)
     return TB_OK;
 }
 
+/* A 6-dof joint's axes: known modes, finite ordered limits, turns within [-pi, pi]. */
+static tb_result check_axes(tb_world* w, const tb_joint_def* d, uint32_t i)
+{
+    for (int k = 0; k < 6; k++) {
+        const tb_joint_axis* x = &d->axes[k];
+        if (x->mode != TB_JOINT_AXIS_LOCKED && x->mode != TB_JOINT_AXIS_FREE &&
+            x->mode != TB_JOINT_AXIS_LIMITED)
+            return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "joint def %u: axis %d has an "
+                           "unknown mode %d", i, k, (int)x->mode);
+        if (x->mode != TB_JOINT_AXIS_LIMITED) continue;
+        if (!isfinite(x->lower) || !isfinite(x->upper) || x->lower > x->upper)
+            return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "joint def %u: axis %d's limits "
+                           "must be finite with lower <= upper", i, k);
+        if (k >= 3 && (x->lower < -PI_WITH_ROOM || x->upper > PI_WITH_ROOM))
+            return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "joint def %u: axis %d (a turn) "
+                           "must be limited within [-pi, pi]", i, k);
+    }
+    return TB_OK;
+}
+
 /* What each kind takes: limits, motors and springs only where the kind has them. */
 static tb_result check_kind(tb_world* w, const tb_joint_def* d, uint32_t i)
 {
     tb_joint_kind k = d->kind;
-    if (k < TB_JOINT_BALL || k > TB_JOINT_SLIDER) {
+    if (k < TB_JOINT_BALL || k > TB_JOINT_SIX_DOF) {
         return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "joint def %u: unknown joint kind %d",
                        i, (int)k);
     }
-    int limited = k == TB_JOINT_HINGE || k == TB_JOINT_SLIDER || k == TB_JOINT_DISTANCE;
+    int limited = k == TB_JOINT_HINGE || k == TB_JOINT_SLIDER || k == TB_JOINT_DISTANCE ||
+                  k == TB_JOINT_CONE_TWIST;
     if (d->enable_limit && !limited)
-        return bad(w, i, "only hinges, sliders and distance joints take a limit");
+        return bad(w, i, "only hinges, sliders, distance and cone-twist joints take a limit "
+                   "(6-dof joints: their axes)");
     if (d->enable_motor && k != TB_JOINT_HINGE && k != TB_JOINT_SLIDER)
         return bad(w, i, "only hinges and sliders take a motor");
-    if (d->enable_spring && k != TB_JOINT_DISTANCE)
-        return bad(w, i, "only distance joints take a spring");
-    return TB_OK;
+    if (d->enable_spring && k != TB_JOINT_DISTANCE && k != TB_JOINT_HINGE && k != TB_JOINT_SLIDER)
+        return bad(w, i, "only distance joints, hinges and sliders take a spring");
+    return k == TB_JOINT_SIX_DOF ? check_axes(w, d, i) : TB_OK;
 }
 
 /* A def checked; its bodies' slots to a and b. */
@@ -206,6 +235,24 @@ tb_result tb_joint_set_limit(tb_world* w, tb_joint_id id, int32_t enable, float 
     d.enable_limit = enable;
     d.lower = lower;
     d.upper = upper;
+    return replace_def(w, j, slot, &d);
+}
+
+tb_result tb_joint_set_spring(tb_world* w, tb_joint_id id, int32_t enable, float hertz,
+                              float damping_ratio, float target)
+{
+    uint32_t slot;
+    tb_result r;
+    tb_joint_record* j = tb_joint_lookup(w, id, &slot, &r);
+    if (!j) return r;
+    tb_joint_def d = j->def;
+    d.enable_spring = enable;
+    d.spring_hertz = hertz;
+    d.spring_damping_ratio = damping_ratio;
+    if (d.kind == TB_JOINT_DISTANCE)
+        d.length = target;
+    else
+        d.spring_target = target;
     return replace_def(w, j, slot, &d);
 }
 

@@ -123,21 +123,43 @@ static tb_gpu_vec4 unit_quat(tb_quat q)
     return (tb_gpu_vec4){ q.x / n, q.y / n, q.z / n, q.w / n };
 }
 
+/* A 6-dof def's axes: their limits into g, their modes as info.z's flags. */
+static uint32_t six_dof_axes(const tb_joint_def* d, tb_gpu_joint* g)
+{
+    float* lower[6] = { &g->lower.x, &g->lower.y, &g->lower.z,
+                        &g->turn_lower.x, &g->turn_lower.y, &g->turn_lower.z };
+    float* upper[6] = { &g->upper.x, &g->upper.y, &g->upper.z,
+                        &g->turn_upper.x, &g->turn_upper.y, &g->turn_upper.z };
+    uint32_t flags = 0;
+    for (int i = 0; i < 6; i++) {
+        const tb_joint_axis* x = &d->axes[i];
+        uint32_t mode = x->mode == TB_JOINT_AXIS_FREE      ? TB_GPU_JOINT_AXIS_FREE
+                        : x->mode == TB_JOINT_AXIS_LIMITED ? TB_GPU_JOINT_AXIS_LIMITED
+                                                           : TB_GPU_JOINT_AXIS_LOCKED;
+        flags |= mode << (TB_GPU_JOINT_AXIS_SHIFT + 2 * i);
+        *lower[i] = mode == TB_GPU_JOINT_AXIS_LIMITED ? x->lower : 0.0f;
+        *upper[i] = mode == TB_GPU_JOINT_AXIS_LIMITED ? x->upper : 0.0f;
+    }
+    return flags;
+}
+
 /* The GPU record of a def whose bodies are slots a and b. */
 static tb_gpu_joint gpu_joint_of(const tb_joint_def* d, uint32_t a, uint32_t b,
                                  uint16_t generation)
 {
     uint32_t flags = (d->enable_limit ? TB_GPU_JOINT_LIMIT : 0) |
                      (d->enable_motor ? TB_GPU_JOINT_MOTOR : 0) |
-                     (d->enable_spring && d->kind == TB_JOINT_DISTANCE ? TB_GPU_JOINT_SPRING : 0) |
+                     (d->enable_spring ? TB_GPU_JOINT_SPRING : 0) |
                      (d->break_force > 0 || d->break_torque > 0 ? TB_GPU_JOINT_BREAKABLE : 0);
     tb_gpu_joint g;
+    memset(&g, 0, sizeof g);
+    if (d->kind == TB_JOINT_SIX_DOF) flags |= six_dof_axes(d, &g);
     g.info = (tb_gpu_uvec4){ a, b, (uint32_t)d->kind | flags, generation };
-    g.anchor_a = vec4_of(d->anchor_a, d->length);
+    g.anchor_a = vec4_of(d->anchor_a, d->kind == TB_JOINT_DISTANCE ? d->length : d->spring_target);
     g.anchor_b = vec4_of(d->anchor_b, d->spring_hertz);
     g.frame_a = unit_quat(d->frame_a);
     g.frame_b = unit_quat(d->frame_b);
-    g.limit = (tb_gpu_vec4){ d->lower, d->upper, d->spring_damping_ratio, 0 };
+    g.limit = (tb_gpu_vec4){ d->lower, d->upper, d->spring_damping_ratio, d->cone_angle };
     g.motor = (tb_gpu_vec4){ d->motor_speed, d->max_motor_force, d->break_force,
                              d->break_torque };
     return g;
