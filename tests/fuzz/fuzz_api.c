@@ -152,7 +152,7 @@ static tb_joint_def joint_def(fz_input* in)
 {
     tb_joint_def d = tb_default_joint_def();
     uint8_t which = fz_u8(in);
-    d.kind = (tb_joint_kind)(which % 6);
+    d.kind = (tb_joint_kind)(which % 8);
     if (which == 255) d.kind = (tb_joint_kind)fz_u32(in);
     d.body_a = pick_body(in);
     d.body_b = pick_body(in);
@@ -178,6 +178,16 @@ static tb_joint_def joint_def(fz_input* in)
         d.spring_hertz = fz_float(in);
         d.spring_damping_ratio = fz_float(in);
         d.length = fz_float(in);
+        d.spring_target = fz_float(in);
+    }
+    if (d.kind == TB_JOINT_CONE_TWIST && (which & 4)) d.cone_angle = fz_float(in);
+    if (d.kind == TB_JOINT_SIX_DOF && (which & 4)) {
+        for (int i = 0; i < 6; i++) {
+            uint8_t mode = fz_u8(in);
+            d.axes[i].mode = (tb_joint_axis_mode)(mode == 255 ? fz_u32(in) : mode % 3u);
+            d.axes[i].lower = fz_float(in);
+            d.axes[i].upper = fz_float(in);
+        }
     }
     if (which & 128) {
         d.break_force = fz_float(in);
@@ -213,7 +223,9 @@ static void use_joint(fz_input* in)
     uint32_t count = fz_u8(in) % 5u;
     for (uint32_t i = 0; i < count; i++) ids[i] = pick_joint(in);
     uint8_t nulls = fz_u8(in);
-    switch (fz_u8(in) % 5) {
+    switch (fz_u8(in) % 6) {
+    case 4: CALL(tb_joint_set_spring(world, j, fz_u8(in) & 1, fz_float(in), fz_float(in),
+                                     fz_float(in))); break;
     case 0: CALL(tb_joint_set_motor(world, j, fz_u8(in) & 1, fz_float(in), fz_float(in))); break;
     case 1: CALL(tb_joint_set_limit(world, j, fz_u8(in) & 1, fz_float(in), fz_float(in))); break;
     case 2: CALL(tb_joint_read_forces(world, nulls & 8 ? NULL : ids, count, nulls & 1 ? NULL : f,

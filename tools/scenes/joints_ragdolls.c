@@ -1,15 +1,17 @@
 /* ragdolls: N ragdolls of 11 bodies (a box pelvis and torso, a sphere head, capsule upper
- * and lower arms and legs, about 65 kg in all from the default density) joined by ball
- * joints at the spine, neck, shoulders and hips and by hinges across the body at the
- * elbows and knees, limited to bend one way as a person's do. They stand on a square grid
+ * and lower arms and legs, about 65 kg in all from the default density) joined by
+ * cone-twist joints at the spine, neck, shoulders and hips (each limb swinging within a
+ * cone about where it points at the start, and twisting within a limit) and by hinges
+ * across the body at the elbows and knees, limited to bend one way as a person's do. They stand on a square grid
  * of pitch 1.2 m, each turned about the vertical and tilted by a fixed random angle so
  * that no two fall alike, their feet at least 0.5 m above a static plane, and fall onto
  * it: onto each other only where a neighbour topples that way.
  *
  * Checks: nan; below_ground, bodies whose centre ended below the plane; max_gap, the
  * largest distance between a joint's two anchors (m); max_twist, the largest angle between
- * the axes an elbow's or knee's hinge holds together (rad); broken; resting, the share of
- * bodies slower than 0.1 m/s; max_penetration. */
+ * the axes an elbow's or knee's hinge holds together (rad); max_swing_over, the most a
+ * cone-twist joint's swing passed its cone (rad); broken; resting, the share of bodies
+ * slower than 0.1 m/s; max_penetration. */
 #include "instance.h"
 
 #include <math.h>
@@ -28,39 +30,47 @@ typedef enum part_shape { PART_BOX, PART_SPHERE, PART_CAPSULE } part_shape;
 /* A body of the ragdoll standing upright facing +z, pelvis at the origin: its shape (box
  * half extents; sphere radius in x; capsule radius in x and half height in y, along y),
  * where it is, and the joint that holds it to `parent` (none for the pelvis) at `joint`:
- * a ball, or a hinge about x whose limit is lower..upper. */
+ * a hinge about `axis` whose limit is lower..upper, or a cone-twist joint whose cone of
+ * half angle `cone` is about `axis` and whose twist about it is within lower..upper. */
 typedef struct ragdoll_part {
     part_shape shape;
     tb_vec3 size;
     tb_vec3 centre;
     int parent;
     tb_joint_kind kind;
-    tb_vec3 joint;
-    float lower, upper;
+    tb_vec3 joint, axis;
+    float lower, upper, cone;
 } ragdoll_part;
+
+#define ACROSS { 1, 0, 0 }
+#define UP { 0, 1, 0 }
+#define DOWN { 0, -1, 0 }
+#define CONE TB_JOINT_CONE_TWIST
 
 /* A knee turned by a positive angle about +x swings its foot backwards (-z), an elbow
  * turned by a negative one swings its hand forwards. */
 static const ragdoll_part PARTS[RAGDOLL_PARTS] = {
-    { PART_BOX, { 0.15f, 0.08f, 0.10f }, { 0, 0, 0 }, -1, TB_JOINT_BALL, { 0, 0, 0 }, 0, 0 },
-    { PART_BOX, { 0.17f, 0.20f, 0.10f }, { 0, 0.32f, 0 }, 0, TB_JOINT_BALL, { 0, 0.10f, 0 }, 0, 0 },
-    { PART_SPHERE, { 0.10f, 0, 0 }, { 0, 0.66f, 0 }, 1, TB_JOINT_BALL, { 0, 0.54f, 0 }, 0, 0 },
-    { PART_CAPSULE, { 0.045f, 0.10f, 0 }, { -0.23f, 0.34f, 0 }, 1, TB_JOINT_BALL,
-      { -0.23f, 0.48f, 0 }, 0, 0 },
-    { PART_CAPSULE, { 0.045f, 0.10f, 0 }, { 0.23f, 0.34f, 0 }, 1, TB_JOINT_BALL,
-      { 0.23f, 0.48f, 0 }, 0, 0 },
+    { PART_BOX, { 0.15f, 0.08f, 0.10f }, { 0, 0, 0 }, -1, CONE, { 0, 0, 0 }, UP, 0, 0, 0 },
+    { PART_BOX, { 0.17f, 0.20f, 0.10f }, { 0, 0.32f, 0 }, 0, CONE, { 0, 0.10f, 0 }, UP,
+      -0.4f, 0.4f, 0.5f },
+    { PART_SPHERE, { 0.10f, 0, 0 }, { 0, 0.66f, 0 }, 1, CONE, { 0, 0.54f, 0 }, UP,
+      -0.8f, 0.8f, 0.6f },
+    { PART_CAPSULE, { 0.045f, 0.10f, 0 }, { -0.23f, 0.34f, 0 }, 1, CONE, { -0.23f, 0.48f, 0 },
+      DOWN, -1.0f, 1.0f, 1.6f },
+    { PART_CAPSULE, { 0.045f, 0.10f, 0 }, { 0.23f, 0.34f, 0 }, 1, CONE, { 0.23f, 0.48f, 0 },
+      DOWN, -1.0f, 1.0f, 1.6f },
     { PART_CAPSULE, { 0.04f, 0.10f, 0 }, { -0.23f, 0.05f, 0 }, 3, TB_JOINT_HINGE,
-      { -0.23f, 0.19f, 0 }, -KNEE_BEND, 0 },
+      { -0.23f, 0.19f, 0 }, ACROSS, -KNEE_BEND, 0, 0 },
     { PART_CAPSULE, { 0.04f, 0.10f, 0 }, { 0.23f, 0.05f, 0 }, 4, TB_JOINT_HINGE,
-      { 0.23f, 0.19f, 0 }, -KNEE_BEND, 0 },
-    { PART_CAPSULE, { 0.06f, 0.15f, 0 }, { -0.09f, -0.29f, 0 }, 0, TB_JOINT_BALL,
-      { -0.09f, -0.08f, 0 }, 0, 0 },
-    { PART_CAPSULE, { 0.06f, 0.15f, 0 }, { 0.09f, -0.29f, 0 }, 0, TB_JOINT_BALL,
-      { 0.09f, -0.08f, 0 }, 0, 0 },
+      { 0.23f, 0.19f, 0 }, ACROSS, -KNEE_BEND, 0, 0 },
+    { PART_CAPSULE, { 0.06f, 0.15f, 0 }, { -0.09f, -0.29f, 0 }, 0, CONE, { -0.09f, -0.08f, 0 },
+      DOWN, -0.5f, 0.5f, 1.0f },
+    { PART_CAPSULE, { 0.06f, 0.15f, 0 }, { 0.09f, -0.29f, 0 }, 0, CONE, { 0.09f, -0.08f, 0 },
+      DOWN, -0.5f, 0.5f, 1.0f },
     { PART_CAPSULE, { 0.05f, 0.16f, 0 }, { -0.09f, -0.72f, 0 }, 7, TB_JOINT_HINGE,
-      { -0.09f, -0.505f, 0 }, 0, KNEE_BEND },
+      { -0.09f, -0.505f, 0 }, ACROSS, 0, KNEE_BEND, 0 },
     { PART_CAPSULE, { 0.05f, 0.16f, 0 }, { 0.09f, -0.72f, 0 }, 8, TB_JOINT_HINGE,
-      { 0.09f, -0.505f, 0 }, 0, KNEE_BEND },
+      { 0.09f, -0.505f, 0 }, ACROSS, 0, KNEE_BEND, 0 },
 };
 
 /* One shape per part, shared by every ragdoll. */
@@ -109,18 +119,17 @@ static tb_result ragdoll_joints(tb_world* w, uint32_t k, tb_vec3 at, tb_quat tur
                                 const scene_instance* inst, tb_joint_def* defs)
 {
     const tb_body_id* ids = inst->ids + k * RAGDOLL_PARTS;
-    tb_vec3 across = joints_rotate(turn, (tb_vec3){ 1, 0, 0 });
     tb_result r = TB_OK;
     for (uint32_t i = 1; r == TB_OK && i < RAGDOLL_PARTS; i++) {
         const ragdoll_part* p = &PARTS[i];
         tb_joint_def* d = &defs[i - 1];
         r = joints_def_at(w, p->kind, ids[p->parent], ids[i],
-                          joints_add(at, joints_rotate(turn, p->joint)), across, d);
-        if (p->kind == TB_JOINT_HINGE) {
-            d->enable_limit = 1;
-            d->lower = p->lower;
-            d->upper = p->upper;
-        }
+                          joints_add(at, joints_rotate(turn, p->joint)),
+                          joints_rotate(turn, p->axis), d);
+        d->enable_limit = 1;
+        d->lower = p->lower;
+        d->upper = p->upper;
+        d->cone_angle = p->cone;
     }
     return r;
 }
@@ -159,18 +168,19 @@ tb_result ragdolls_build(tb_world* w, const scene_params* params, scene_instance
     return TB_OK;
 }
 
-/* The largest angle between the x axes of an elbow's or knee's two bodies, which the hinge
- * holds at 0 (every part starts with the ragdoll's axes), rad. */
-static double ragdolls_twist(const tb_quat* rot, uint32_t ragdolls)
+/* Over the joints of `kind`: the largest angle between the joint's axis as its two bodies
+ * carry it (every part starts with the ragdoll's axes) less `slack` (the cone's), rad: a
+ * hinge holds it at 0, a cone-twist joint within its cone. */
+static double ragdolls_axis_error(const tb_quat* rot, uint32_t ragdolls, tb_joint_kind kind)
 {
-    const tb_vec3 x = { 1, 0, 0 };
     double worst = 0.0;
     for (uint32_t k = 0; k < ragdolls; k++) {
         const tb_quat* parts = rot + k * RAGDOLL_PARTS;
         for (uint32_t i = 1; i < RAGDOLL_PARTS; i++) {
-            if (PARTS[i].kind != TB_JOINT_HINGE) continue;
-            double angle = joints_angle_between(joints_rotate(parts[PARTS[i].parent], x),
-                                                joints_rotate(parts[i], x));
+            const ragdoll_part* p = &PARTS[i];
+            if (p->kind != kind) continue;
+            double angle = joints_angle_between(joints_rotate(parts[p->parent], p->axis),
+                                                joints_rotate(parts[i], p->axis)) - p->cone;
             if (!(angle <= worst)) worst = angle;
         }
     }
@@ -201,7 +211,9 @@ tb_result ragdolls_check(tb_world* w, const scene_instance* inst, uint32_t steps
         scene_put(out, "nan", nan);
         scene_put(out, "below_ground", below);
         scene_put(out, "max_gap", joints.max_gap);
-        scene_put(out, "max_twist", ragdolls_twist(rot, inst->count / RAGDOLL_PARTS));
+        uint32_t ragdolls = inst->count / RAGDOLL_PARTS;
+        scene_put(out, "max_twist", ragdolls_axis_error(rot, ragdolls, TB_JOINT_HINGE));
+        scene_put(out, "max_swing_over", ragdolls_axis_error(rot, ragdolls, CONE));
         scene_put(out, "broken", joints.broken);
         scene_put(out, "resting", inst->count ? (double)resting / inst->count : 1.0);
         scene_put(out, "max_penetration", depth);

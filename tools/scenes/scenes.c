@@ -279,9 +279,10 @@ static const scene scenes[] = {
     { "bridge", "N planks hinged end to end between two static posts, a heavy box dropped "
                 "on the middle; checks nan, sag of the middle plank, max_gap, max_twist, "
                 "broken, load_fell", 1.0f / 60.0f, 20, 600, bridge_build, bridge_check, instance_free },
-    { "ragdolls", "N ragdolls of 11 bodies (ball joints, limited hinges at elbows and "
-                  "knees) dropped leaning onto a plane; checks nan, below_ground, max_gap, "
-                  "max_twist, broken, resting, max_penetration", 1.0f / 60.0f, 100, 600,
+    { "ragdolls", "N ragdolls of 11 bodies (cone-twist joints at spine, neck, shoulders "
+                  "and hips, limited hinges at elbows and knees) dropped leaning onto a "
+                  "plane; checks nan, below_ground, max_gap, max_twist, max_swing_over, "
+                  "broken, resting, max_penetration", 1.0f / 60.0f, 100, 600,
       ragdolls_build, ragdolls_check, instance_free },
     { "vehicles", "N cars of a box chassis and four cylinder wheels on motored hinges "
                   "driving on a plane; checks nan, mean_speed (+x, m/s), min and max, "
