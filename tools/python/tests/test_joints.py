@@ -21,7 +21,9 @@ def test_joint_ids_and_kinds_match_the_header():
     assert tumble.JOINT_KINDS == {"ball": lib.TB_JOINT_BALL, "hinge": lib.TB_JOINT_HINGE,
                                   "fixed": lib.TB_JOINT_FIXED,
                                   "distance": lib.TB_JOINT_DISTANCE,
-                                  "slider": lib.TB_JOINT_SLIDER}
+                                  "slider": lib.TB_JOINT_SLIDER,
+                                  "cone_twist": lib.TB_JOINT_CONE_TWIST,
+                                  "six_dof": lib.TB_JOINT_SIX_DOF}
     with open(tumble.header_path) as f:                  # "#define TB_MAX_JOINTS 2097152u"
         most = re.search(r"^#define TB_MAX_JOINTS (\d+)[uU]?\s*$", f.read(), re.M)
     assert most and lib.TB_MAX_JOINTS == int(most.group(1))
@@ -182,12 +184,13 @@ def test_bad_joint_input_raises_and_makes_nothing(make_world):
         world.create_joints("ball", post, pair, at=[(1, 2, 0), (np.nan, 2, 0)])
     with pytest.raises(tumble.TumbleError, match="axis not zero"):
         world.create_joint("hinge", post, a, at=(1, 2, 0), axis=(0, 0, 0))
-    with pytest.raises(tumble.TumbleError, match="only distance joints take a spring"):
+    with pytest.raises(tumble.TumbleError,
+                       match="only distance joints, hinges and sliders take a spring"):
         world.create_joint("ball", post, a, at=(1, 2, 0), spring=(2.0, 0.5))
     assert len(world.joint_ids()) == 0
     # What the binding refuses before any call.
     with pytest.raises(ValueError, match="kind must be one of 'ball', 'hinge', 'fixed', "
-                                         "'distance', 'slider', got 'weld'"):
+                                         "'distance', 'slider', 'cone_twist', 'six_dof', got 'weld'"):
         world.create_joint("weld", a, b, at=(1.5, 2, 0))
     with pytest.raises(TypeError, match="body_b must be a tumble.Body"):
         world.create_joint("ball", a, "b", at=(1.5, 2, 0))
@@ -235,7 +238,7 @@ def test_bad_joint_input_raises_and_makes_nothing(make_world):
     ball = world.create_joint("ball", a, b, at=(1.5, 2, 0))
     with pytest.raises(tumble.TumbleError, match="only hinges and sliders take a motor"):
         world.set_motor(ball, 1.0, 1.0)
-    with pytest.raises(tumble.TumbleError, match="only hinges, sliders and distance joints"):
+    with pytest.raises(tumble.TumbleError, match="only hinges, sliders, distance and cone-twist"):
         world.set_limit(ball, 0.0, 1.0)
     # A stale id, after destroy.
     world.destroy(ball)
@@ -251,6 +254,58 @@ def test_bad_joint_input_raises_and_makes_nothing(make_world):
         assert caught.value.code == lib.TB_ERROR_STALE_ID
     assert list(world.joint_ids()) == [hinge]
     world.step(DT)
+
+
+def test_cone_twist_six_dof_and_springs(make_world):
+    world = make_world()
+    post = world.add_body(world.sphere(0.02), (0, 2, 0), static=True)
+    rod = world.box((0.5, 0.05, 0.05))
+    # A level rod on a cone of 0.5 rad about its length falls to the cone and hangs there.
+    coned = world.add_body(rod, (0.5, 2, 0))
+    world.create_joint("cone_twist", post, coned, at=(0, 2, 0), axis=(1, 0, 0), cone_angle=0.5,
+                       limit=(-0.2, 0.2))
+    # A 6-dof joint locked but for the turn about z, limited to +-0.3 rad: a limited hinge.
+    other = world.add_body(world.sphere(0.02), (0, 4, 0), static=True)
+    hinged = world.add_body(rod, (0.5, 4, 0))
+    world.create_joint("six_dof", other, hinged, at=(0, 4, 0), axis=(1, 0, 0),
+                       axes=["locked"] * 5 + [(-0.3, 0.3)])
+    # A 2 kg box on a vertical slider with a damped 2 Hz spring to 0.1 m below its anchor.
+    top = world.add_body(world.sphere(0.02), (3, 3, 0), static=True)
+    box = world.add_body(world.box((0.2, 0.2, 0.2)), (3, 3, 0), mass=2.0)
+    slider = world.create_joint("slider", top, box, at=(3, 3, 0), axis=(0, -1, 0),
+                                spring=(2.0, 1.0, 0.1))
+    for _ in range(60):
+        world.step(DT)
+    x_of = lambda body: world.pose(body)[1]       # noqa: E731
+    along = tumble_rotate(x_of(coned), (1, 0, 0))
+    assert np.arccos(min(1.0, along[0])) == pytest.approx(0.5, abs=np.radians(1))
+    q = x_of(hinged)
+    assert 2 * np.arctan2(q[2], q[3]) == pytest.approx(-0.3, abs=np.radians(1))
+    sag = 0.1 + G / (2 * np.pi * 2) ** 2          # the target, and Hooke's stretch
+    assert 3 - world.pose(box)[0][1] == pytest.approx(sag, rel=0.02)
+    world.set_spring(slider, 2.0, 1.0, target=0.0)
+    world.set_spring(slider, enable=False)
+    with pytest.raises(tumble.TumbleError, match="spring_hertz > 0"):
+        world.set_spring(slider, 0.0, 1.0)
+    with pytest.raises(TypeError, match="give hertz and damping_ratio"):
+        world.set_spring(slider, 2.0)
+    with pytest.raises(ValueError, match="axes must be six entries"):
+        world.create_joint("six_dof", post, box, at=(0, 2, 0), axes=["free"] * 5)
+    with pytest.raises(ValueError, match=r"axes\[2\] must be"):
+        world.create_joint("six_dof", post, box, at=(0, 2, 0), axes=["free", "free", "loose",
+                                                                     "free", "free", "free"])
+    with pytest.raises(tumble.TumbleError, match="axis 1's limits"):
+        world.create_joint("six_dof", post, box, at=(0, 2, 0),
+                           axes=["free", (1, -1), "free", "free", "free", "free"])
+    with pytest.raises(tumble.TumbleError, match="cone_angle must be within"):
+        world.create_joint("cone_twist", post, box, at=(0, 2, 0), cone_angle=-1)
+
+
+def tumble_rotate(q, v):
+    """v turned by the x y z w quaternion q."""
+    u, w = np.asarray(q[:3], dtype=float), float(q[3])
+    v = np.asarray(v, dtype=float)
+    return v + 2 * w * np.cross(u, v) + 2 * np.cross(u, np.cross(u, v))
 
 
 def test_a_soft_step_world_refuses_joints(make_world):

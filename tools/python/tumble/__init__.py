@@ -53,7 +53,8 @@ def _broadphases():
 SOLVERS = {"soft": lib.TB_SOLVER_SOFT_STEP, "block": lib.TB_SOLVER_BLOCK}  # tb_solver_kind
 JOINT_KINDS = {"ball": lib.TB_JOINT_BALL, "hinge": lib.TB_JOINT_HINGE,   # tb_joint_kind
                "fixed": lib.TB_JOINT_FIXED, "distance": lib.TB_JOINT_DISTANCE,
-               "slider": lib.TB_JOINT_SLIDER}
+               "slider": lib.TB_JOINT_SLIDER, "cone_twist": lib.TB_JOINT_CONE_TWIST,
+               "six_dof": lib.TB_JOINT_SIX_DOF}
 
 BROADPHASES = _broadphases()   # name -> tb_broadphase value, from tb_broadphase_name
 _SHAPE_TYPES = {lib.TB_SHAPE_SPHERE: "sphere", lib.TB_SHAPE_BOX: "box",
@@ -339,6 +340,27 @@ def _as_shape(name, value):
         raise TypeError("%s must be a tumble.Shape (from World.sphere, box, capsule, "
                         "cylinder, cone, plane, hull or mesh), got %r" % (name, value))
     return value
+
+
+_AXIS_MODES = {"locked": lib.TB_JOINT_AXIS_LOCKED, "free": lib.TB_JOINT_AXIS_FREE}
+
+
+def _set_axes(template, axes):
+    """A 6-dof def's six axes from "locked", "free" or (lower, upper) each."""
+    if isinstance(axes, (str, bytes)) or not hasattr(axes, "__len__") or len(axes) != 6:
+        raise ValueError("axes must be six entries (x, y, z offsets, then turns about x, y, "
+                         "z), each \"locked\", \"free\" or (lower, upper); got %r" % (axes,))
+    for i, entry in enumerate(axes):
+        axis = template.axes[i]
+        if isinstance(entry, str):
+            if entry not in _AXIS_MODES:
+                raise ValueError("axes[%d] must be \"locked\", \"free\" or (lower, upper), "
+                                 "got %r" % (i, entry))
+            axis.mode = _AXIS_MODES[entry]
+            continue
+        pair = _vector("axes[%d]" % i, entry, 2).tolist()
+        axis.mode = lib.TB_JOINT_AXIS_LIMITED
+        axis.lower, axis.upper = pair
 
 
 def _as_joint(name, value):
@@ -1008,8 +1030,9 @@ class World:
     def create_joints(self, kind, bodies_a, bodies_b, at=None, axis=None, anchors_a=None,
                       anchors_b=None, frames_a=None, frames_b=None, length=None, limit=None,
                       motor=None, spring=None, collide_connected=False, break_force=None,
-                      break_torque=None):
-        """Joints of one `kind` ("ball", "hinge", "fixed", "distance" or "slider"), joint i
+                      break_torque=None, cone_angle=None, axes=None):
+        """Joints of one `kind` ("ball", "hinge", "fixed", "distance", "slider", "cone_twist"
+        or "six_dof"), joint i
         between bodies_a[i] and bodies_b[i], in one tb_joint_create_many call: all are made
         or none. bodies_a and bodies_b are Bodies of one length, or a Body that every joint
         shares (a hook that all hang from). Where each joint holds, either:
@@ -1023,21 +1046,27 @@ class World:
           identity). A distance joint's two anchors are two points: give these.
 
         The options apply to all: length (distance joints, m; default 1), limit=(lower,
-        upper) (hinges rad in [-pi, pi], sliders and distance joints m), motor=(speed,
-        max_force) (hinges rad/s and N m, sliders m/s and N), spring=(hertz, damping_ratio)
-        (distance joints: a spring to `length` instead of a rod), collide_connected (whether
-        the two bodies collide; default False), break_force (N) and break_torque (N m): the
+        upper) (hinges and a cone-twist's twist rad in [-pi, pi], sliders and distance joints
+        m), motor=(speed, max_force) (hinges rad/s and N m, sliders m/s and N),
+        spring=(hertz, damping_ratio) or (hertz, damping_ratio, target) (distance joints: a
+        spring to `length` instead of a rod; hinges: to the angle `target`, rad; sliders: to
+        the offset `target`, m; default target 0), cone_angle (cone-twist joints: the
+        largest angle between the frames' x axes, rad; default pi/4), axes (6-dof joints:
+        six entries, the offsets along a's frame's x, y, z then the turns about them, each
+        "locked" (the default), "free" or (lower, upper)), collide_connected (whether the
+        two bodies collide; default False), break_force (N) and break_torque (N m): the
         joint breaks once it holds more (None or 0: never). Each holds from the next step
         on. Returns their Joints."""
         return self._create_joints(kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
                                    frames_a, frames_b, length, limit, motor, spring,
-                                   collide_connected, break_force, break_torque, False)
+                                   collide_connected, break_force, break_torque, False,
+                                   cone_angle, axes)
 
     def create_joint(self, kind, body_a, body_b, at=None, axis=None, anchor_a=None,
                      anchor_b=None, frame_a=None, frame_b=None, length=None, limit=None,
                      motor=None, spring=None, collide_connected=False, break_force=None,
-                     break_torque=None):
-        """One joint of `kind` ("ball", "hinge", "fixed", "distance" or "slider") between
+                     break_torque=None, cone_angle=None, axes=None):
+        """One joint of `kind` (one of JOINT_KINDS) between
         body_a and body_b: at a world point `at` (3 numbers) with the hinge's or slider's
         `axis` (a world direction, default (1, 0, 0)), or at anchor_a and anchor_b (each in
         its body's frame) with frame_a and frame_b (x y z w). The other keywords are
@@ -1051,11 +1080,11 @@ class World:
         return self._create_joints(kind, a, b, one["at"], one["axis"], one["anchor_a"],
                                    one["anchor_b"], one["frame_a"], one["frame_b"], length,
                                    limit, motor, spring, collide_connected, break_force,
-                                   break_torque, True)[0]
+                                   break_torque, True, cone_angle, axes)[0]
 
     def _create_joints(self, kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
                        frames_a, frames_b, length, limit, motor, spring, collide_connected,
-                       break_force, break_torque, single):
+                       break_force, break_torque, single, cone_angle=None, axes=None):
         if not isinstance(kind, str) or kind not in JOINT_KINDS:
             raise ValueError("kind must be one of %s, got %r"
                              % (", ".join(repr(k) for k in JOINT_KINDS), kind))
@@ -1095,9 +1124,12 @@ class World:
         template = ffi.new("tb_joint_def*", lib.tb_default_joint_def())
         template.kind = JOINT_KINDS[kind]
         for name, value in (("length", length), ("break_force", break_force),
-                            ("break_torque", break_torque)):
+                            ("break_torque", break_torque), ("cone_angle", cone_angle)):
             if value is not None:
                 setattr(template, name, _real(name, value))
+        if spring is not None and np.size(spring) == 3:
+            template.spring_target = _vector("spring", spring, 3).tolist()[2]
+            spring = tuple(np.asarray(spring, dtype=float).tolist()[:2])
         for name, value, enable, fields in (
                 ("limit", limit, "enable_limit", ("lower", "upper")),
                 ("motor", motor, "enable_motor", ("motor_speed", "max_motor_force")),
@@ -1107,6 +1139,8 @@ class World:
                 setattr(template, enable, 1)
                 for field, number in zip(fields, pair.tolist()):
                     setattr(template, field, number)
+        if axes is not None:
+            _set_axes(template, axes)
         if not isinstance(collide_connected, (bool, np.bool_)):
             raise TypeError("collide_connected must be True or False, got %r"
                             % (collide_connected,))
@@ -1174,8 +1208,25 @@ class World:
         self._set_pair(lib.tb_joint_set_motor, joint, ("speed", "max_force"), speed,
                        max_force, enable)
 
+    def set_spring(self, joint, hertz=None, damping_ratio=None, target=0.0, enable=True):
+        """A hinge's, slider's or distance joint's spring, from the next step on: `hertz`
+        (> 0) and `damping_ratio` (>= 0) on the bodies' effective mass or moment, pulling to
+        `target` (hinges: the angle, rad, in [-pi, pi]; sliders: the offset, m; distance
+        joints: the length, m). A hinge's target moved each step makes a position servo.
+        set_spring(joint, enable=False) turns it off."""
+        j = _as_joint("joint", joint)
+        if not isinstance(enable, (bool, np.bool_)):
+            raise TypeError("enable must be True or False, got %r" % (enable,))
+        if enable and (hertz is None or damping_ratio is None):
+            raise TypeError("give hertz and damping_ratio (or enable=False to turn it off)")
+        hertz = 1.0 if hertz is None else _real("hertz", hertz)
+        damping_ratio = 0.0 if damping_ratio is None else _real("damping_ratio", damping_ratio)
+        self._check(lib.tb_joint_set_spring(self._handle(), j._c(), int(bool(enable)), hertz,
+                                            damping_ratio, _real("target", target)))
+
     def set_limit(self, joint, lower=None, upper=None, enable=True):
-        """A hinge's (rad, within [-pi, pi]), slider's or distance joint's (m) limit, from
+        """A hinge's or cone-twist's twist (rad, within [-pi, pi]), slider's or distance
+        joint's (m) limit, from
         the next step on, lower <= upper. set_limit(joint, enable=False) turns it off."""
         self._set_pair(lib.tb_joint_set_limit, joint, ("lower", "upper"), lower, upper,
                        enable)
