@@ -386,6 +386,7 @@ TEST_JOBS ?= 2
 TEST_TWO_WIDTHS := $(addprefix $(BUILD)/tests/,test_prims test_batching test_block test_broadphase \
                    test_narrowphase test_round test_mesh_contacts test_golden)
 TEST_SLOWEST := $(BUILD)/tests/test_stacking tools/fuzz $(SAN)/tests/test_api $(BUILD)/tests/test_joints $(BUILD)/tests/test_joint_kinds \
+                $(BUILD)/tests/test_joint_structures \
                 $(addprefix $(BUILD)/tests/,test_round test_broadphase test_snapshot test_contacts \
                 test_block test_narrowphase test_mesh_contacts test_integrate)
 TEST_RUNS  := $(filter-out $(TEST_SLOWEST),$(TEST_BIN)) $(SAN_TESTS)
