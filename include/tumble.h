@@ -781,6 +781,11 @@ typedef struct tb_joint_def {
     /// 6-dof joints: the three offsets along a's frame's axes, then the three turns about
     /// them. Default all locked.
     tb_joint_axis axes[6];
+    /// A soft joint: what the kind holds (the anchors together, the frames aligned, a rod's
+    /// length, a 6-dof joint's locked axes) is held by springs of this frequency, Hz, and
+    /// damping ratio on the bodies' effective mass or moment instead of rigidly; limits
+    /// stay hard. 0 Hz: rigid. Default 0 and 0.
+    float constraint_hertz, constraint_damping_ratio;
     /// Whether the two bodies collide with each other. Default 0 (they do not).
     int32_t collide_connected;
     /// The joint breaks (stops holding; tb_joint_read_forces reports it) once the force

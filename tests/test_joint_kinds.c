@@ -1,8 +1,8 @@
-/* Cone-twist and 6-dof joints and the springs of hinges and sliders (lavapipe, validation
- * on): a cone holds its swing and a twist limit its twist, a 6-dof joint set up as a
- * limited hinge or slider stops where a limit says, a hinge's spring swings at its
- * frequency and servoes to a target, a slider's spring sags as far as Hooke says, and the
- * API refuses what these kinds do not take. */
+/* Cone-twist and 6-dof joints, the springs of hinges and sliders, and soft joints
+ * (lavapipe, validation on): a cone holds its swing and a twist limit its twist, a 6-dof
+ * joint set up as a limited hinge or slider stops where a limit says, a hinge's spring
+ * swings at its frequency and servoes to a target, a slider's spring and a soft joint sag
+ * as far as Hooke says, and the API refuses what these kinds do not take. */
 #include "harness.h"
 
 #include <math.h>
@@ -269,6 +269,40 @@ static void test_slider_spring(void** state)
     th_world_destroy(w);
 }
 
+/* A 2 kg box hung by its top from a post on a soft ball joint (2 Hz, critically damped)
+ * sags below the post as a spring of that frequency on its mass would, g / (2 pi 2)^2
+ * (within 2 %), and rests there; its weld twin on a soft fixed joint sags the same. */
+static void test_soft_joint(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    tb_joint_kind kinds[2] = { TB_JOINT_BALL, TB_JOINT_FIXED };
+    tb_body_id boxes[2];
+    for (int i = 0; i < 2; i++) {
+        float x = 2.0f * (float)i;
+        tb_body_id top = post(w, th_v3(x, 3, 0));
+        tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.1f, 0.1f, 0.1f)), th_v3(x, 2.9f, 0));
+        d.mass = 2;
+        boxes[i] = th_body(w, &d);
+        tb_joint_def j = joint_def_at(w, kinds[i], top, boxes[i], th_v3(x, 3, 0), th_v3(1, 0, 0));
+        j.constraint_hertz = 2;
+        j.constraint_damping_ratio = 1;
+        joint(w, &j);
+    }
+    for (int s = 0; s < 90; s++) th_assert_ok(tb_world_step(w, DT));
+    double want = G / pow(2 * PI * 2, 2);
+    for (int i = 0; i < 2; i++) {
+        tb_vec3 p, v;
+        th_read_pose(w, boxes[i], &p, NULL);
+        th_assert_ok(tb_body_get_velocity(w, boxes[i], &v, NULL));
+        print_message("  soft %s 2 Hz: sags %.4f m (a spring: %.4f), moving %.5f m/s\n",
+                      i ? "weld" : "ball", 2.9 - p.y, want, fabs(v.y));
+        th_assert_near(2.9 - p.y, want, 0, 0.02);
+        assert_true(fabs(v.y) < 1e-3);
+    }
+    th_world_destroy(w);
+}
+
 /* What cone-twist and 6-dof joints and springs refuse, with nothing made or changed. */
 static void test_bad_input(void** state)
 {
@@ -313,6 +347,12 @@ static void test_bad_input(void** state)
     bad.enable_spring = 1;
     th_assert_result(tb_joint_create(w, &bad, &id), TB_ERROR_INVALID_ARGUMENT);
     bad = cone;
+    bad.constraint_hertz = -1;
+    th_assert_result(tb_joint_create(w, &bad, &id), TB_ERROR_INVALID_ARGUMENT);
+    bad = cone;
+    bad.constraint_damping_ratio = NAN;
+    th_assert_result(tb_joint_create(w, &bad, &id), TB_ERROR_INVALID_ARGUMENT);
+    bad = cone;
     bad.kind = TB_JOINT_HINGE;
     bad.enable_spring = 1;
     bad.spring_target = 4;
@@ -346,6 +386,7 @@ int main(void)
         cmocka_unit_test(test_six_dof_slider),
         cmocka_unit_test(test_hinge_spring),
         cmocka_unit_test(test_slider_spring),
+        cmocka_unit_test(test_soft_joint),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -137,6 +137,10 @@ struct joint_work {
     vec3 gl, ga;
     // dual: the force and torque on b, about b's anchor, summed over the rows
     vec3 force, torque;
+    // a soft joint's frequency (0: rigid) and damping ratio, and how far its bodies have
+    // moved and turned since the step began (a held row's rate)
+    float soft_hertz, soft_damping;
+    vec3 dpa, va, dpb, vb;
 };
 
 // Row r with multiplier lambda and stiffness k (unit: its stiffness unit), its force
@@ -169,10 +173,18 @@ void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout floa
     w.D += k * outerProduct(ja, ja);
 }
 
-// An equality row.
+void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
+                      float damping, vec3 rb);
+
+// An equality row: hard (its multiplier and stiffness), or in a soft joint a spring to 0.
 void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float k, float unit,
                 vec3 rb)
 {
+    if (w.soft_hertz > 0.0) {
+        float moved = dot(r.la, w.dpa) + dot(r.aa, w.va) + dot(r.lb, w.dpb) + dot(r.ab, w.vb);
+        joint_spring_row(w, r, moved, unit, w.soft_hertz, w.soft_damping, rb);
+        return;
+    }
     joint_apply(w, r, lambda, k, unit, -1e30, 1e30, true, rb);
 }
 
@@ -274,17 +286,17 @@ void joint_motor_row(inout joint_work w, joint_row r, float speed, float most,
     s.axial.w = k;
 }
 
-// A spring of the joint's frequency and damping ratio on the bodies' effective mass (or
-// moment, unit h^2) along row r, whose value is the coordinate's distance from where the
+// A spring of frequency `hertz` and damping ratio `damping` on the bodies' effective mass
+// (or moment, unit h^2) along row r, whose value is the coordinate's distance from where the
 // spring pulls to and `moved` its change over the step so far; stepped implicitly, its
 // stiffness k and damping c over the step act as k + c / dt: a row of multiplier f at
 // C = 0 with that stiffness.
-void joint_spring_row(inout joint_work w, tb_gpu_joint jt, joint_row r, float moved, float unit,
-                      vec3 rb)
+void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
+                      float damping, vec3 rb)
 {
-    float h = block_h(), omega = 6.2831853 * jt.anchor_b.w;
+    float h = block_h(), omega = 6.2831853 * hertz;
     float mass = unit * h * h;
-    float k = mass * omega * omega, c = 2.0 * mass * jt.limit.z * omega;
+    float k = mass * omega * omega, c = 2.0 * mass * damping * omega;
     float lambda = -(k * r.C + c * moved / h), stiffness = k + c / h;
     r.C = 0.0;
     joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
@@ -312,7 +324,8 @@ void joint_hinge_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     if (joint_has(jt, TB_GPU_JOINT_SPRING)) {
         float off = angle - jt.anchor_a.w;
         off -= 6.2831853 * round(off / 6.2831853);   // the near way round
-        joint_spring_row(w, jt, joint_turn_row(x, off), turned, unit.y, p.rb);
+        joint_spring_row(w, joint_turn_row(x, off), turned, unit.y, jt.anchor_b.w, jt.limit.z,
+                         p.rb);
     }
 }
 
@@ -336,8 +349,8 @@ void joint_slider_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
         joint_motor_row(w, joint_frame_row(p, x, moved), jt.motor.x, jt.motor.y, s, unit.x,
                         p.rb);
     if (joint_has(jt, TB_GPU_JOINT_SPRING))
-        joint_spring_row(w, jt, joint_frame_row(p, x, offset - jt.anchor_a.w), moved, unit.x,
-                         p.rb);
+        joint_spring_row(w, joint_frame_row(p, x, offset - jt.anchor_a.w), moved, unit.x,
+                         jt.anchor_b.w, jt.limit.z, p.rb);
 }
 
 // A cone-twist joint: the anchors meet (the point rows), B's x axis stays within the cone
@@ -418,7 +431,7 @@ void joint_distance_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     if (joint_has(jt, TB_GPU_JOINT_SPRING)) {
         float moved = dot(n, (p.dpb + cross(p.vb, p.rb)) - (p.dpa + cross(p.va, p.ra)));
         r.C = len - rest;
-        joint_spring_row(w, jt, r, moved, unit.x, p.rb);
+        joint_spring_row(w, r, moved, unit.x, jt.anchor_b.w, jt.limit.z, p.rb);
         if (joint_has(jt, TB_GPU_JOINT_LIMIT)) {
             r.C = len;
             joint_axial_limit_row(w, r, jt.limit.x, jt.limit.y, s, unit.x, p.rb);
@@ -445,6 +458,12 @@ void joint_rows(inout joint_work w, uint j, inout tb_gpu_joint_state s, vec3 dpa
     joint_pose p = joint_pose_of(jt, dpa, va, dpb, vb);
     vec2 unit = joint_units(jt);
     uint kind = joint_kind(jt);
+    w.soft_hertz = joint_has(jt, TB_GPU_JOINT_SOFT) ? jt.lower.w : 0.0;
+    w.soft_damping = jt.upper.w;
+    w.dpa = dpa;
+    w.va = va;
+    w.dpb = dpb;
+    w.vb = vb;
     if (kind == TB_GPU_JOINT_BALL) {
         joint_point_rows(w, p, s, unit.x);
     } else if (kind == TB_GPU_JOINT_FIXED) {
@@ -507,6 +526,12 @@ joint_work joint_work_primal(bool is_b)
     w.ga = vec3(0.0);
     w.force = vec3(0.0);
     w.torque = vec3(0.0);
+    w.soft_hertz = 0.0;
+    w.soft_damping = 0.0;
+    w.dpa = vec3(0.0);
+    w.va = vec3(0.0);
+    w.dpb = vec3(0.0);
+    w.vb = vec3(0.0);
     return w;
 }
 

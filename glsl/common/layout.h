@@ -293,6 +293,8 @@ TB_STRUCT(tb_gpu_counters) {
 #define TB_GPU_JOINT_AXIS_FREE    TB_U(0)
 #define TB_GPU_JOINT_AXIS_LIMITED TB_U(1)
 #define TB_GPU_JOINT_AXIS_LOCKED  TB_U(2)
+#define TB_GPU_JOINT_SOFT       TB_U(0x1000000) /* its held rows are springs (lower.w Hz,
+                                                   upper.w damping ratio) */
 /* The slot of the filter table where the pair of body slots + 1 (lo < hi) is first looked
  * for; the next ones follow. */
 #define TB_JOINT_FILTER_HASH(lo, hi) \
@@ -313,8 +315,8 @@ TB_STRUCT(tb_gpu_joint) {
     TB_VEC4 motor;            /* x target speed (rad/s, m/s), y most force or torque (N, N m),
                                  z break force (N), w break torque (N m) */
     TB_VEC4 lower;            /* 6-dof: xyz the lower limits of the offset along A's axes (m),
-                                 w unused */
-    TB_VEC4 upper;            /* xyz their upper limits, w unused */
+                                 w a soft joint's frequency (Hz) */
+    TB_VEC4 upper;            /* xyz their upper limits, w a soft joint's damping ratio */
     TB_VEC4 turn_lower;       /* xyz the lower limits of the turn about A's axes (rad: the
                                  rotation vector of A^-1 B), w unused */
     TB_VEC4 turn_upper;       /* xyz their upper limits, w unused */

@@ -41,11 +41,12 @@ static tb_result check_numbers(tb_world* w, const tb_joint_def* d, uint32_t i)
 {
     float numbers[] = { d->length, d->lower, d->upper, d->motor_speed, d->max_motor_force,
                         d->spring_hertz, d->spring_damping_ratio, d->spring_target,
-                        d->cone_angle, d->break_force, d->break_torque };
+                        d->cone_angle, d->break_force, d->break_torque, d->constraint_hertz,
+                        d->constraint_damping_ratio };
     if (!tb_finite3(d->anchor_a) || !tb_finite3(d->anchor_b) ||
         !finite_all(numbers, (int)(sizeof numbers / sizeof numbers[0])))
-        return bad(w, i, "anchors, length, limits, motor, spring, cone and break values must "
-                   "be finite");
+        return bad(w, i, "anchors, length, limits, motor, spring, cone, break and constraint "
+                   "values must be finite");
     if (!tb_coordinates_within(d->anchor_a, TB_MAX_COORDINATE) ||
         !tb_coordinates_within(d->anchor_b, TB_MAX_COORDINATE))
         return bad(w, i, "anchors must be within TB_MAX_COORDINATE of their bodies");
@@ -64,6 +65,9 @@ static tb_result check_numbers(tb_world* w, const tb_joint_def* d, uint32_t i)
     if (d->max_motor_force < 0) return bad(w, i, "max_motor_force must be >= 0");
     if (d->enable_spring && !(d->spring_hertz > 0 && d->spring_damping_ratio >= 0))
         return bad(w, i, "a spring needs spring_hertz > 0 and spring_damping_ratio >= 0");
+    if (d->constraint_hertz < 0 || d->constraint_damping_ratio < 0)
+        return bad(w, i, "constraint_hertz and constraint_damping_ratio must be >= 0 (0 Hz: "
+                   "rigid)");
     if (d->break_force < 0 || d->break_torque < 0)
         return bad(w, i, "break_force and break_torque must be >= 0 (0: never)");
     return TB_OK;

@@ -150,10 +150,13 @@ static tb_gpu_joint gpu_joint_of(const tb_joint_def* d, uint32_t a, uint32_t b,
     uint32_t flags = (d->enable_limit ? TB_GPU_JOINT_LIMIT : 0) |
                      (d->enable_motor ? TB_GPU_JOINT_MOTOR : 0) |
                      (d->enable_spring ? TB_GPU_JOINT_SPRING : 0) |
-                     (d->break_force > 0 || d->break_torque > 0 ? TB_GPU_JOINT_BREAKABLE : 0);
+                     (d->break_force > 0 || d->break_torque > 0 ? TB_GPU_JOINT_BREAKABLE : 0) |
+                     (d->constraint_hertz > 0 ? TB_GPU_JOINT_SOFT : 0);
     tb_gpu_joint g;
     memset(&g, 0, sizeof g);
     if (d->kind == TB_JOINT_SIX_DOF) flags |= six_dof_axes(d, &g);
+    g.lower.w = d->constraint_hertz;
+    g.upper.w = d->constraint_damping_ratio;
     g.info = (tb_gpu_uvec4){ a, b, (uint32_t)d->kind | flags, generation };
     g.anchor_a = vec4_of(d->anchor_a, d->kind == TB_JOINT_DISTANCE ? d->length : d->spring_target);
     g.anchor_b = vec4_of(d->anchor_b, d->spring_hertz);

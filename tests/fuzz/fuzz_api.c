@@ -181,6 +181,10 @@ static tb_joint_def joint_def(fz_input* in)
         d.spring_target = fz_float(in);
     }
     if (d.kind == TB_JOINT_CONE_TWIST && (which & 4)) d.cone_angle = fz_float(in);
+    if (which & 2) {
+        d.constraint_hertz = fz_float(in);
+        d.constraint_damping_ratio = fz_float(in);
+    }
     if (d.kind == TB_JOINT_SIX_DOF && (which & 4)) {
         for (int i = 0; i < 6; i++) {
             uint8_t mode = fz_u8(in);

@@ -283,6 +283,14 @@ def test_cone_twist_six_dof_and_springs(make_world):
     assert 2 * np.arctan2(q[2], q[3]) == pytest.approx(-0.3, abs=np.radians(1))
     sag = 0.1 + G / (2 * np.pi * 2) ** 2          # the target, and Hooke's stretch
     assert 3 - world.pose(box)[0][1] == pytest.approx(sag, rel=0.02)
+    # A 2 kg box hung from its top on a soft ball joint (2 Hz, critically damped) sags as a
+    # spring of that frequency would.
+    hook = world.add_body(world.sphere(0.02), (6, 3, 0), static=True)
+    hung = world.add_body(world.box((0.1, 0.1, 0.1)), (6, 2.9, 0), mass=2.0)
+    world.create_joint("ball", hook, hung, at=(6, 3, 0), soft=(2.0, 1.0))
+    for _ in range(60):
+        world.step(DT)
+    assert 2.9 - world.pose(hung)[0][1] == pytest.approx(G / (2 * np.pi * 2) ** 2, rel=0.02)
     world.set_spring(slider, 2.0, 1.0, target=0.0)
     world.set_spring(slider, enable=False)
     with pytest.raises(tumble.TumbleError, match="spring_hertz > 0"):
@@ -297,6 +305,8 @@ def test_cone_twist_six_dof_and_springs(make_world):
     with pytest.raises(tumble.TumbleError, match="axis 1's limits"):
         world.create_joint("six_dof", post, box, at=(0, 2, 0),
                            axes=["free", (1, -1), "free", "free", "free", "free"])
+    with pytest.raises(tumble.TumbleError, match="constraint_hertz and constraint_damping"):
+        world.create_joint("ball", post, box, at=(0, 2, 0), soft=(-1.0, 1.0))
     with pytest.raises(tumble.TumbleError, match="cone_angle must be within"):
         world.create_joint("cone_twist", post, box, at=(0, 2, 0), cone_angle=-1)
 

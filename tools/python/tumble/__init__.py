@@ -1030,7 +1030,7 @@ class World:
     def create_joints(self, kind, bodies_a, bodies_b, at=None, axis=None, anchors_a=None,
                       anchors_b=None, frames_a=None, frames_b=None, length=None, limit=None,
                       motor=None, spring=None, collide_connected=False, break_force=None,
-                      break_torque=None, cone_angle=None, axes=None):
+                      break_torque=None, cone_angle=None, axes=None, soft=None):
         """Joints of one `kind` ("ball", "hinge", "fixed", "distance", "slider", "cone_twist"
         or "six_dof"), joint i
         between bodies_a[i] and bodies_b[i], in one tb_joint_create_many call: all are made
@@ -1053,19 +1053,21 @@ class World:
         the offset `target`, m; default target 0), cone_angle (cone-twist joints: the
         largest angle between the frames' x axes, rad; default pi/4), axes (6-dof joints:
         six entries, the offsets along a's frame's x, y, z then the turns about them, each
-        "locked" (the default), "free" or (lower, upper)), collide_connected (whether the
+        "locked" (the default), "free" or (lower, upper)), soft=(hertz, damping_ratio) (what
+        the kind holds is held by springs of that frequency and damping instead of rigidly;
+        limits stay hard; default rigid), collide_connected (whether the
         two bodies collide; default False), break_force (N) and break_torque (N m): the
         joint breaks once it holds more (None or 0: never). Each holds from the next step
         on. Returns their Joints."""
         return self._create_joints(kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
                                    frames_a, frames_b, length, limit, motor, spring,
                                    collide_connected, break_force, break_torque, False,
-                                   cone_angle, axes)
+                                   cone_angle, axes, soft)
 
     def create_joint(self, kind, body_a, body_b, at=None, axis=None, anchor_a=None,
                      anchor_b=None, frame_a=None, frame_b=None, length=None, limit=None,
                      motor=None, spring=None, collide_connected=False, break_force=None,
-                     break_torque=None, cone_angle=None, axes=None):
+                     break_torque=None, cone_angle=None, axes=None, soft=None):
         """One joint of `kind` (one of JOINT_KINDS) between
         body_a and body_b: at a world point `at` (3 numbers) with the hinge's or slider's
         `axis` (a world direction, default (1, 0, 0)), or at anchor_a and anchor_b (each in
@@ -1080,11 +1082,12 @@ class World:
         return self._create_joints(kind, a, b, one["at"], one["axis"], one["anchor_a"],
                                    one["anchor_b"], one["frame_a"], one["frame_b"], length,
                                    limit, motor, spring, collide_connected, break_force,
-                                   break_torque, True, cone_angle, axes)[0]
+                                   break_torque, True, cone_angle, axes, soft)[0]
 
     def _create_joints(self, kind, bodies_a, bodies_b, at, axis, anchors_a, anchors_b,
                        frames_a, frames_b, length, limit, motor, spring, collide_connected,
-                       break_force, break_torque, single, cone_angle=None, axes=None):
+                       break_force, break_torque, single, cone_angle=None, axes=None,
+                       soft=None):
         if not isinstance(kind, str) or kind not in JOINT_KINDS:
             raise ValueError("kind must be one of %s, got %r"
                              % (", ".join(repr(k) for k in JOINT_KINDS), kind))
@@ -1133,10 +1136,12 @@ class World:
         for name, value, enable, fields in (
                 ("limit", limit, "enable_limit", ("lower", "upper")),
                 ("motor", motor, "enable_motor", ("motor_speed", "max_motor_force")),
-                ("spring", spring, "enable_spring", ("spring_hertz", "spring_damping_ratio"))):
+                ("spring", spring, "enable_spring", ("spring_hertz", "spring_damping_ratio")),
+                ("soft", soft, None, ("constraint_hertz", "constraint_damping_ratio"))):
             if value is not None:
                 pair = _vector(name, value, 2)
-                setattr(template, enable, 1)
+                if enable:
+                    setattr(template, enable, 1)
                 for field, number in zip(fields, pair.tolist()):
                     setattr(template, field, number)
         if axes is not None:
