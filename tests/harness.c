@@ -297,6 +297,37 @@ tb_body_id th_body(tb_world* w, const tb_body_def* def)
     return id;
 }
 
+tb_body_id th_post(tb_world* w, tb_vec3 at)
+{
+    tb_body_def d = th_static_def(th_sphere(w, 0.02f), at);
+    return th_body(w, &d);
+}
+
+tb_joint_def th_joint_def_at(tb_world* w, tb_joint_kind kind, tb_body_id a, tb_body_id b,
+                             tb_vec3 at, tb_vec3 axis)
+{
+    tb_joint_def d = tb_default_joint_def();
+    d.kind = kind;
+    d.body_a = a;
+    d.body_b = b;
+    th_assert_ok(tb_joint_def_at(w, &d, at, axis));
+    return d;
+}
+
+tb_joint_id th_joint(tb_world* w, const tb_joint_def* def)
+{
+    tb_joint_id id;
+    th_assert_ok(tb_joint_create(w, def, &id));
+    return id;
+}
+
+double th_joint_gap(tb_world* w, tb_joint_id joint)
+{
+    tb_vec3 a, b;
+    th_assert_ok(tb_joint_read_anchors(w, &joint, 1, &a, &b));
+    return sqrt(pow(b.x - a.x, 2) + pow(b.y - a.y, 2) + pow(b.z - a.z, 2));
+}
+
 void th_read_pose(tb_world* w, tb_body_id id, tb_vec3* position, tb_quat* rotation)
 {
     th_assert_ok(tb_world_read_transforms(w, &id, 1, position, rotation));

@@ -103,6 +103,15 @@ tb_body_def th_dynamic_def(tb_shape_id shape, tb_vec3 position);
 /// As th_dynamic_def, static.
 tb_body_def th_static_def(tb_shape_id shape, tb_vec3 position);
 tb_body_id th_body(tb_world* w, const tb_body_def* def);
+/// A static post at `at` for joints to hang from: a small sphere nothing touches.
+tb_body_id th_post(tb_world* w, tb_vec3 at);
+/// A def of a joint of `kind` between a and b at the world point `at`, its frames' x axes
+/// along `axis` (tb_joint_def_at).
+tb_joint_def th_joint_def_at(tb_world* w, tb_joint_kind kind, tb_body_id a, tb_body_id b,
+                             tb_vec3 at, tb_vec3 axis);
+tb_joint_id th_joint(tb_world* w, const tb_joint_def* def);
+/// How far apart a joint's two anchors are, m.
+double th_joint_gap(tb_world* w, tb_joint_id joint);
 /// Pose of one body through tb_world_read_transforms.
 void th_read_pose(tb_world* w, tb_body_id id, tb_vec3* position, tb_quat* rotation);
 tb_world_stats th_stats(const tb_world* w);

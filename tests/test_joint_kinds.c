@@ -14,31 +14,6 @@
 #define G 9.81
 #define DEGREE (PI / 180)
 
-/* A static post at `at` (a small sphere nothing touches). */
-static tb_body_id post(tb_world* w, tb_vec3 at)
-{
-    tb_body_def d = th_static_def(th_sphere(w, 0.02f), at);
-    return th_body(w, &d);
-}
-
-static tb_joint_def joint_def_at(tb_world* w, tb_joint_kind kind, tb_body_id a, tb_body_id b,
-                                 tb_vec3 at, tb_vec3 axis)
-{
-    tb_joint_def d = tb_default_joint_def();
-    d.kind = kind;
-    d.body_a = a;
-    d.body_b = b;
-    th_assert_ok(tb_joint_def_at(w, &d, at, axis));
-    return d;
-}
-
-static tb_joint_id joint(tb_world* w, const tb_joint_def* d)
-{
-    tb_joint_id id;
-    th_assert_ok(tb_joint_create(w, d, &id));
-    return id;
-}
-
 /* World direction of a body's local axis `axis`. */
 static void body_axis(tb_world* w, tb_body_id b, const double axis[3], double out[3])
 {
@@ -54,13 +29,13 @@ static void test_cone_swing(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.5f, 0.05f, 0.05f)), th_v3(0.5f, 2, 0));
     tb_body_id rod = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_CONE_TWIST, top, rod, th_v3(0, 2, 0),
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_CONE_TWIST, top, rod, th_v3(0, 2, 0),
                                   th_v3(1, 0, 0));
     j.cone_angle = 0.5f;
-    tb_joint_id id = joint(w, &j);
+    tb_joint_id id = th_joint(w, &j);
     double most = 0, swing = 0, gap = 0;
     const double x[3] = { 1, 0, 0 };
     for (int s = 0; s < 90; s++) {
@@ -69,11 +44,7 @@ static void test_cone_swing(void** state)
         body_axis(w, rod, x, along);
         swing = acos(fmin(1.0, along[0]));
         if (swing > most) most = swing;
-        tb_vec3 anchors[2];
-        th_assert_ok(tb_joint_read_anchors(w, &id, 1, &anchors[0], &anchors[1]));
-        double g = sqrt(pow(anchors[1].x - anchors[0].x, 2) + pow(anchors[1].y - anchors[0].y, 2) +
-                        pow(anchors[1].z - anchors[0].z, 2));
-        if (g > gap) gap = g;
+        gap = fmax(gap, th_joint_gap(w, id));
     }
     print_message("  cone 0.5 rad: swing ends at %.4f rad (most %.4f), anchors %.3f mm apart at "
                   "most\n", swing, most, 1000 * gap);
@@ -90,17 +61,17 @@ static void test_cone_twist_limit(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.05f, 0.5f, 0.05f)), th_v3(0, 1.5f, 0));
     d.angular_velocity = th_v3(0, 5, 0);
     tb_body_id rod = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_CONE_TWIST, top, rod, th_v3(0, 2, 0),
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_CONE_TWIST, top, rod, th_v3(0, 2, 0),
                                   th_v3(0, -1, 0));
     j.cone_angle = 0.3f;
     j.enable_limit = 1;
     j.lower = -0.2f;
     j.upper = 0.2f;
-    joint(w, &j);
+    th_joint(w, &j);
     double most = 0, twist = 0, swing = 0;
     for (int s = 0; s < 60; s++) {
         th_assert_ok(tb_world_step(w, DT));
@@ -128,12 +99,12 @@ static void test_six_dof_hinge(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.5f, 0.05f, 0.05f)), th_v3(0.5f, 2, 0));
     tb_body_id rod = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_SIX_DOF, top, rod, th_v3(0, 2, 0), th_v3(1, 0, 0));
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_SIX_DOF, top, rod, th_v3(0, 2, 0), th_v3(1, 0, 0));
     j.axes[5] = (tb_joint_axis){ TB_JOINT_AXIS_LIMITED, -0.5f, 0.5f };
-    tb_joint_id id = joint(w, &j);
+    tb_joint_id id = th_joint(w, &j);
     double angle = 0, lowest = 0, off_plane = 0, gap = 0;
     for (int s = 0; s < 90; s++) {
         th_assert_ok(tb_world_step(w, DT));
@@ -142,10 +113,7 @@ static void test_six_dof_hinge(void** state)
         angle = 2 * atan2(q.z, q.w);
         if (angle < lowest) lowest = angle;
         if (fabs(q.x) + fabs(q.y) > off_plane) off_plane = fabs(q.x) + fabs(q.y);
-        tb_vec3 a, b;
-        th_assert_ok(tb_joint_read_anchors(w, &id, 1, &a, &b));
-        double g = sqrt(pow(b.x - a.x, 2) + pow(b.y - a.y, 2) + pow(b.z - a.z, 2));
-        if (g > gap) gap = g;
+        gap = fmax(gap, th_joint_gap(w, id));
     }
     print_message("  6-dof as a hinge: ends at %.4f rad (lowest %.4f), off its plane %.5f, "
                   "anchors %.3f mm apart at most\n", angle, lowest, off_plane, 1000 * gap);
@@ -163,14 +131,14 @@ static void test_six_dof_slider(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 5, 0));
+    tb_body_id top = th_post(w, th_v3(0, 5, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.2f, 0.2f, 0.2f)), th_v3(0, 5, 0));
     tb_body_id box = th_body(w, &d);
     const float c = 0.70710678f;
-    tb_joint_def j = joint_def_at(w, TB_JOINT_SIX_DOF, top, box, th_v3(0, 5, 0),
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_SIX_DOF, top, box, th_v3(0, 5, 0),
                                   th_v3(c, -c, 0));
     j.axes[0] = (tb_joint_axis){ TB_JOINT_AXIS_LIMITED, -0.3f, 0.3f };
-    joint(w, &j);
+    th_joint(w, &j);
     double worst = 0, worst_angle = 0, along = 0, most = 0;
     for (int s = 0; s < 60; s++) {
         th_assert_ok(tb_world_step(w, DT));
@@ -208,15 +176,15 @@ static void test_hinge_spring(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.2f, 0.2f, 0.2f)), th_v3(0, 2, 0));
     d.mass = 1;
     tb_body_id cube = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_HINGE, top, cube, th_v3(0, 2, 0), th_v3(0, 0, 1));
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_HINGE, top, cube, th_v3(0, 2, 0), th_v3(0, 0, 1));
     j.enable_spring = 1;
     j.spring_hertz = 1;
     j.spring_target = 0.4f;
-    tb_joint_id id = joint(w, &j);
+    tb_joint_id id = th_joint(w, &j);
     double last = -0.4, first_cross = -1, last_cross = -1;
     int crossings = 0;
     for (int s = 1; s <= 150; s++) {
@@ -248,15 +216,15 @@ static void test_slider_spring(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 3, 0));
+    tb_body_id top = th_post(w, th_v3(0, 3, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.2f, 0.2f, 0.2f)), th_v3(0, 3, 0));
     d.mass = 2;
     tb_body_id box = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_SLIDER, top, box, th_v3(0, 3, 0), th_v3(0, 1, 0));
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_SLIDER, top, box, th_v3(0, 3, 0), th_v3(0, 1, 0));
     j.enable_spring = 1;
     j.spring_hertz = 2;
     j.spring_damping_ratio = 1;
-    joint(w, &j);
+    th_joint(w, &j);
     for (int s = 0; s < 60; s++) th_assert_ok(tb_world_step(w, DT));
     tb_vec3 p, v;
     th_read_pose(w, box, &p, NULL);
@@ -280,14 +248,14 @@ static void test_soft_joint(void** state)
     tb_body_id boxes[2];
     for (int i = 0; i < 2; i++) {
         float x = 2.0f * (float)i;
-        tb_body_id top = post(w, th_v3(x, 3, 0));
+        tb_body_id top = th_post(w, th_v3(x, 3, 0));
         tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.1f, 0.1f, 0.1f)), th_v3(x, 2.9f, 0));
         d.mass = 2;
         boxes[i] = th_body(w, &d);
-        tb_joint_def j = joint_def_at(w, kinds[i], top, boxes[i], th_v3(x, 3, 0), th_v3(1, 0, 0));
+        tb_joint_def j = th_joint_def_at(w, kinds[i], top, boxes[i], th_v3(x, 3, 0), th_v3(1, 0, 0));
         j.constraint_hertz = 2;
         j.constraint_damping_ratio = 1;
-        joint(w, &j);
+        th_joint(w, &j);
     }
     for (int s = 0; s < 90; s++) th_assert_ok(tb_world_step(w, DT));
     double want = G / pow(2 * PI * 2, 2);
@@ -308,10 +276,10 @@ static void test_bad_input(void** state)
 {
     (void)state;
     tb_world* w = th_world_create_ex(NULL, 1);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_sphere(w, 0.1f), th_v3(0, 1, 0));
     tb_body_id bob = th_body(w, &d);
-    tb_joint_def cone = joint_def_at(w, TB_JOINT_CONE_TWIST, top, bob, th_v3(0, 2, 0),
+    tb_joint_def cone = th_joint_def_at(w, TB_JOINT_CONE_TWIST, top, bob, th_v3(0, 2, 0),
                                      th_v3(0, -1, 0));
     tb_joint_def six = cone;
     six.kind = TB_JOINT_SIX_DOF;

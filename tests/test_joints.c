@@ -12,32 +12,6 @@
 #define PI 3.14159265358979323846
 #define G 9.81
 
-/* A static anchor post at the origin (a small sphere nothing touches). */
-static tb_body_id post(tb_world* w, tb_vec3 at)
-{
-    tb_body_def d = th_static_def(th_sphere(w, 0.02f), at);
-    return th_body(w, &d);
-}
-
-/* A joint of `kind` between a and b at the world point `at`, axis `axis`. */
-static tb_joint_def joint_def_at(tb_world* w, tb_joint_kind kind, tb_body_id a, tb_body_id b,
-                                 tb_vec3 at, tb_vec3 axis)
-{
-    tb_joint_def d = tb_default_joint_def();
-    d.kind = kind;
-    d.body_a = a;
-    d.body_b = b;
-    th_assert_ok(tb_joint_def_at(w, &d, at, axis));
-    return d;
-}
-
-static tb_joint_id joint(tb_world* w, const tb_joint_def* d)
-{
-    tb_joint_id id;
-    th_assert_ok(tb_joint_create(w, d, &id));
-    return id;
-}
-
 /* A ball of radius r and mass m hung by a ball joint L below a post, pulled aside by
  * theta0 about z, let go: over ten periods its swing's period matches the physical
  * pendulum's (with the ball's own inertia, and the amplitude's correction) within 1 %, and
@@ -49,13 +23,13 @@ static void test_pendulum(void** state)
     (void)state;
     tb_world* w = th_world_create(NULL);
     const double L = 1.0, r = 0.1, m = 1.0, theta0 = 0.1;
-    tb_body_id top = post(w, th_v3(0, 0, 0));
+    tb_body_id top = th_post(w, th_v3(0, 0, 0));
     tb_body_def bd = th_dynamic_def(th_sphere(w, (float)r),
                                     th_v3((float)(L * sin(theta0)), (float)(-L * cos(theta0)), 0));
     bd.mass = (float)m;
     tb_body_id bob = th_body(w, &bd);
-    tb_joint_def jd = joint_def_at(w, TB_JOINT_BALL, top, bob, th_v3(0, 0, 0), th_v3(0, 0, 1));
-    joint(w, &jd);
+    tb_joint_def jd = th_joint_def_at(w, TB_JOINT_BALL, top, bob, th_v3(0, 0, 0), th_v3(0, 0, 1));
+    th_joint(w, &jd);
     double inertia = m * L * L + 0.4 * m * r * r;
     double period = 2 * PI * sqrt(inertia / (m * G * L)) * (1 + theta0 * theta0 / 16);
     double rise = L * (1 - cos(theta0));
@@ -123,16 +97,16 @@ static void test_weld(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_shape_id box = th_box(w, th_v3(0.25f, 0.25f, 0.25f));
     tb_body_def da = th_dynamic_def(box, th_v3(0.25f, 1.75f, 0.25f));
     tb_body_def db = th_dynamic_def(box, th_v3(0.75f, 1.75f, 0.25f));
     tb_body_id a = th_body(w, &da), b = th_body(w, &db);
-    tb_joint_def hang = joint_def_at(w, TB_JOINT_BALL, top, a, th_v3(0, 2, 0), th_v3(1, 0, 0));
-    tb_joint_def weld = joint_def_at(w, TB_JOINT_FIXED, a, b, th_v3(0.5f, 1.75f, 0.25f),
+    tb_joint_def hang = th_joint_def_at(w, TB_JOINT_BALL, top, a, th_v3(0, 2, 0), th_v3(1, 0, 0));
+    tb_joint_def weld = th_joint_def_at(w, TB_JOINT_FIXED, a, b, th_v3(0.5f, 1.75f, 0.25f),
                                      th_v3(1, 0, 0));
-    joint(w, &hang);
-    joint(w, &weld);
+    th_joint(w, &hang);
+    th_joint(w, &weld);
     double start[3], angle, worst = 0, worst_angle = 0;
     relative_pose(w, a, b, start, &angle);
     for (int s = 0; s < 1000; s++) {
@@ -162,7 +136,7 @@ static void test_weld(void** state)
 static double swing_chain(int links, float heavy, int steps, float* out)
 {
     tb_world* w = th_world_create(NULL);
-    tb_body_id prev = post(w, th_v3(0, 3, 0));
+    tb_body_id prev = th_post(w, th_v3(0, 3, 0));
     tb_shape_id link = th_box(w, th_v3(0.05f, 0.02f, 0.02f));
     tb_body_id* bodies = malloc((size_t)links * sizeof *bodies);
     tb_joint_id* ids = malloc((size_t)links * sizeof *ids);
@@ -170,9 +144,9 @@ static double swing_chain(int links, float heavy, int steps, float* out)
         tb_body_def d = th_dynamic_def(link, th_v3(0.05f + 0.1f * (float)i, 3, 0));
         d.mass = i == links - 1 ? heavy : 1.0f;
         bodies[i] = th_body(w, &d);
-        tb_joint_def j = joint_def_at(w, TB_JOINT_BALL, prev, bodies[i],
+        tb_joint_def j = th_joint_def_at(w, TB_JOINT_BALL, prev, bodies[i],
                                       th_v3(0.1f * (float)i, 3, 0), th_v3(0, 0, 1));
-        ids[i] = joint(w, &j);
+        ids[i] = th_joint(w, &j);
         prev = bodies[i];
     }
     double worst = 0;
@@ -217,7 +191,7 @@ static void test_hanging_chain(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id prev = post(w, th_v3(0, 3, 0));
+    tb_body_id prev = th_post(w, th_v3(0, 3, 0));
     tb_shape_id link = th_box(w, th_v3(0.02f, 0.05f, 0.02f));
     tb_joint_id ids[HANGING_LINKS];
     tb_body_id last = prev;
@@ -225,9 +199,9 @@ static void test_hanging_chain(void** state)
         tb_body_def d = th_dynamic_def(link, th_v3(0, 2.95f - 0.1f * (float)i, 0));
         d.mass = 1;
         last = th_body(w, &d);
-        tb_joint_def j = joint_def_at(w, TB_JOINT_BALL, prev, last,
+        tb_joint_def j = th_joint_def_at(w, TB_JOINT_BALL, prev, last,
                                       th_v3(0, 3 - 0.1f * (float)i, 0), th_v3(0, 0, 1));
-        ids[i] = joint(w, &j);
+        ids[i] = th_joint(w, &j);
         prev = last;
     }
     for (int s = 0; s < 300; s++) th_assert_ok(tb_world_step(w, DT));
@@ -259,14 +233,14 @@ static void test_hinge_limit(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.5f, 0.05f, 0.05f)), th_v3(0.5f, 2, 0));
     tb_body_id rod = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_HINGE, top, rod, th_v3(0, 2, 0), th_v3(0, 0, 1));
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_HINGE, top, rod, th_v3(0, 2, 0), th_v3(0, 0, 1));
     j.enable_limit = 1;
     j.lower = -0.5f;
     j.upper = 0.5f;
-    joint(w, &j);
+    th_joint(w, &j);
     double lowest = 0, angle = 0;
     for (int s = 0; s < 240; s++) {
         th_assert_ok(tb_world_step(w, DT));
@@ -287,15 +261,15 @@ static void test_hinge_motor(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.5f, 0.05f, 0.05f)), th_v3(0.5f, 2, 0));
     d.mass = 1;
     tb_body_id rod = th_body(w, &d);
-    tb_joint_def j = joint_def_at(w, TB_JOINT_HINGE, top, rod, th_v3(0, 2, 0), th_v3(0, 0, 1));
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_HINGE, top, rod, th_v3(0, 2, 0), th_v3(0, 0, 1));
     j.enable_motor = 1;
     j.motor_speed = 3;
     j.max_motor_force = 50;
-    tb_joint_id id = joint(w, &j);
+    tb_joint_id id = th_joint(w, &j);
     double worst = 0;
     for (int s = 0; s < 180; s++) {
         th_assert_ok(tb_world_step(w, DT));
@@ -321,12 +295,12 @@ static void test_slider(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 5, 0));
+    tb_body_id top = th_post(w, th_v3(0, 5, 0));
     tb_body_def d = th_dynamic_def(th_box(w, th_v3(0.2f, 0.2f, 0.2f)), th_v3(0, 5, 0));
     tb_body_id box = th_body(w, &d);
     const float c = 0.70710678f;
-    tb_joint_def j = joint_def_at(w, TB_JOINT_SLIDER, top, box, th_v3(0, 5, 0), th_v3(c, -c, 0));
-    joint(w, &j);
+    tb_joint_def j = th_joint_def_at(w, TB_JOINT_SLIDER, top, box, th_v3(0, 5, 0), th_v3(c, -c, 0));
+    th_joint(w, &j);
     double worst = 0, worst_angle = 0;
     tb_vec3 p = { 0, 5, 0 };
     for (int s = 0; s < 120; s++) {
@@ -354,16 +328,16 @@ static void test_break(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
     tb_body_def d = th_dynamic_def(th_sphere(w, 0.1f), th_v3(0, 1.5f, 0));
     d.mass = 2;
     tb_body_id weight = th_body(w, &d);
-    tb_joint_def strong = joint_def_at(w, TB_JOINT_BALL, top, weight, th_v3(0, 2, 0),
+    tb_joint_def strong = th_joint_def_at(w, TB_JOINT_BALL, top, weight, th_v3(0, 2, 0),
                                        th_v3(1, 0, 0));
     strong.break_force = 40;
     tb_joint_def weak = strong;
     weak.break_force = 10;
-    tb_joint_id id = joint(w, &strong);
+    tb_joint_id id = th_joint(w, &strong);
     for (int s = 0; s < 30; s++) th_assert_ok(tb_world_step(w, DT));
     tb_vec3 f, t;
     int32_t broken;
@@ -372,7 +346,7 @@ static void test_break(void** state)
     assert_int_equal(broken, 0);
     th_assert_near(f.y, 2 * G, 0, 0.01);
     th_assert_ok(tb_joint_destroy(w, id));
-    id = joint(w, &weak);
+    id = th_joint(w, &weak);
     for (int s = 0; s < 30; s++) th_assert_ok(tb_world_step(w, DT));
     th_assert_ok(tb_joint_read_forces(w, &id, 1, &f, &t, &broken));
     tb_vec3 p;
@@ -396,9 +370,9 @@ static void test_collide_connected(void** state)
         tb_body_def da = th_dynamic_def(box, th_v3(0, 0, 0));
         tb_body_def db = th_dynamic_def(box, th_v3(0.8f, 0, 0));
         tb_body_id a = th_body(w, &da), b = th_body(w, &db);
-        tb_joint_def j = joint_def_at(w, TB_JOINT_FIXED, a, b, th_v3(0.4f, 0, 0), th_v3(1, 0, 0));
+        tb_joint_def j = th_joint_def_at(w, TB_JOINT_FIXED, a, b, th_v3(0.4f, 0, 0), th_v3(1, 0, 0));
         j.collide_connected = collide;
-        joint(w, &j);
+        th_joint(w, &j);
         th_assert_ok(tb_world_step(w, DT));
         uint32_t count = 0;
         th_assert_ok(tb_world_read_contacts(w, NULL, 0, &count));
@@ -427,8 +401,8 @@ static void test_jointed_on_ground(void** state)
         tb_body_def da = th_dynamic_def(box, th_v3(-0.25f, 0.1f, 0));
         tb_body_def db = th_dynamic_def(box, th_v3(0.25f, 0.1f, 0));
         tb_body_id a = th_body(w, &da), b = th_body(w, &db);
-        tb_joint_def j = joint_def_at(w, TB_JOINT_HINGE, a, b, th_v3(0, 0.1f, 0), th_v3(0, 0, 1));
-        joint(w, &j);
+        tb_joint_def j = th_joint_def_at(w, TB_JOINT_HINGE, a, b, th_v3(0, 0.1f, 0), th_v3(0, 0, 1));
+        th_joint(w, &j);
         for (int s = 0; s < 60; s++) th_assert_ok(tb_world_step(w, DT));
         tb_contact c[64];
         uint32_t n = 0;
@@ -458,7 +432,7 @@ static void test_distance(void** state)
     (void)state;
     for (int spring = 0; spring < 2; spring++) {
         tb_world* w = th_world_create(NULL);
-        tb_body_id top = post(w, th_v3(0, 3, 0));
+        tb_body_id top = th_post(w, th_v3(0, 3, 0));
         tb_body_def d = th_dynamic_def(th_sphere(w, 0.1f), th_v3(0, 2, 0));
         d.mass = 1;
         d.linear_damping = 2;
@@ -474,7 +448,7 @@ static void test_distance(void** state)
         j.enable_limit = !spring;
         j.lower = 0;
         j.upper = 1;
-        joint(w, &j);
+        th_joint(w, &j);
         for (int s = 0; s < 300; s++) th_assert_ok(tb_world_step(w, DT));
         tb_vec3 p;
         th_read_pose(w, weight, &p, NULL);
@@ -492,11 +466,11 @@ static void test_bad_input(void** state)
 {
     (void)state;
     tb_world* w = th_world_create_ex(NULL, 1);
-    tb_body_id top = post(w, th_v3(0, 2, 0));
-    tb_body_id other_static = post(w, th_v3(1, 2, 0));
+    tb_body_id top = th_post(w, th_v3(0, 2, 0));
+    tb_body_id other_static = th_post(w, th_v3(1, 2, 0));
     tb_body_def d = th_dynamic_def(th_sphere(w, 0.1f), th_v3(0, 1, 0));
     tb_body_id bob = th_body(w, &d);
-    tb_joint_def good = joint_def_at(w, TB_JOINT_HINGE, top, bob, th_v3(0, 2, 0), th_v3(0, 0, 1));
+    tb_joint_def good = th_joint_def_at(w, TB_JOINT_HINGE, top, bob, th_v3(0, 2, 0), th_v3(0, 0, 1));
     tb_joint_id id;
     tb_joint_def bad = good;
     bad.body_b = top;
@@ -547,7 +521,7 @@ static void test_bad_input(void** state)
     /* The soft step refuses joints, and a world with joints refuses the soft step. */
     tb_world* soft = th_world_create_ex(NULL, 1);
     th_assert_ok(tb_world_set_solver(soft, TB_SOLVER_SOFT_STEP, 0));
-    top = post(soft, th_v3(0, 2, 0));
+    top = th_post(soft, th_v3(0, 2, 0));
     tb_body_def sd = th_dynamic_def(th_sphere(soft, 0.1f), th_v3(0, 1, 0));
     bob = th_body(soft, &sd);
     good.body_a = top;
