@@ -204,7 +204,7 @@ static void test_hanging_chain(void** state)
         ids[i] = th_joint(w, &j);
         prev = last;
     }
-    for (int s = 0; s < 300; s++) th_assert_ok(tb_world_step(w, DT));
+    for (int s = 0; s < 200; s++) th_assert_ok(tb_world_step(w, DT));
     tb_vec3 f[HANGING_LINKS], p;
     th_assert_ok(tb_joint_read_forces(w, ids, HANGING_LINKS, f, NULL, NULL));
     th_read_pose(w, last, &p, NULL);
@@ -242,7 +242,7 @@ static void test_hinge_limit(void** state)
     j.upper = 0.5f;
     th_joint(w, &j);
     double lowest = 0, angle = 0;
-    for (int s = 0; s < 240; s++) {
+    for (int s = 0; s < 150; s++) {
         th_assert_ok(tb_world_step(w, DT));
         tb_quat q;
         th_read_pose(w, rod, NULL, &q);
@@ -281,7 +281,7 @@ static void test_hinge_motor(void** state)
     assert_true(worst < 0.02);
     /* A weak motor cannot hold the rod up: it hangs down, turning slowly. */
     th_assert_ok(tb_joint_set_motor(w, id, 1, 0, 0.5f));
-    for (int s = 0; s < 240; s++) th_assert_ok(tb_world_step(w, DT));
+    for (int s = 0; s < 180; s++) th_assert_ok(tb_world_step(w, DT));
     tb_vec3 p;
     th_read_pose(w, rod, &p, NULL);
     print_message("  weak motor: rod centre at y %.3f\n", p.y);
@@ -449,7 +449,7 @@ static void test_distance(void** state)
         j.lower = 0;
         j.upper = 1;
         th_joint(w, &j);
-        for (int s = 0; s < 300; s++) th_assert_ok(tb_world_step(w, DT));
+        for (int s = 0; s < 200; s++) th_assert_ok(tb_world_step(w, DT));
         tb_vec3 p;
         th_read_pose(w, weight, &p, NULL);
         double k = 1 * pow(2 * PI * 2, 2), want = 1 + (spring ? G / k : 0);
