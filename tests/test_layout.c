@@ -72,6 +72,17 @@ static void test_joint_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_joint_state, held_force), 48);
     assert_int_equal(offsetof(tb_gpu_joint_state, force), 80);
     assert_int_equal(offsetof(tb_gpu_joint_state, info), 112);
+    /* The host passes kinds and axis modes to the GPU as they are. */
+    assert_int_equal(TB_GPU_JOINT_BALL, TB_JOINT_BALL);
+    assert_int_equal(TB_GPU_JOINT_HINGE, TB_JOINT_HINGE);
+    assert_int_equal(TB_GPU_JOINT_FIXED, TB_JOINT_FIXED);
+    assert_int_equal(TB_GPU_JOINT_DISTANCE, TB_JOINT_DISTANCE);
+    assert_int_equal(TB_GPU_JOINT_SLIDER, TB_JOINT_SLIDER);
+    assert_int_equal(TB_GPU_JOINT_CONE, TB_JOINT_CONE_TWIST);
+    assert_int_equal(TB_GPU_JOINT_SIX_DOF, TB_JOINT_SIX_DOF);
+    assert_int_equal(TB_GPU_JOINT_AXIS_LOCKED, TB_JOINT_AXIS_LOCKED);
+    assert_int_equal(TB_GPU_JOINT_AXIS_FREE, TB_JOINT_AXIS_FREE);
+    assert_int_equal(TB_GPU_JOINT_AXIS_LIMITED, TB_JOINT_AXIS_LIMITED);
 }
 
 /* The host writes tb_shape_type straight into info.x. */

@@ -173,8 +173,21 @@ void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout floa
     w.D += k * outerProduct(ja, ja);
 }
 
+// A spring of frequency `hertz` and damping ratio `damping` on the bodies' effective mass
+// (or moment, unit h^2) along row r, whose value is the coordinate's distance from where the
+// spring pulls to and `moved` its change over the step so far; stepped implicitly, its
+// stiffness k and damping c over the step act as k + c / dt: a row of multiplier f at
+// C = 0 with that stiffness.
 void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
-                      float damping, vec3 rb);
+                      float damping, vec3 rb)
+{
+    float h = block_h(), omega = 6.2831853 * hertz;
+    float mass = unit * h * h;
+    float k = mass * omega * omega, c = 2.0 * mass * damping * omega;
+    float lambda = -(k * r.C + c * moved / h), stiffness = k + c / h;
+    r.C = 0.0;
+    joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
+}
 
 // An equality row: hard (its multiplier and stiffness), or in a soft joint a spring to 0.
 void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float k, float unit,
@@ -284,22 +297,6 @@ void joint_motor_row(inout joint_work w, joint_row r, float speed, float most,
     joint_apply(w, r, lambda, k, unit, -most, most, true, rb);
     s.axial.z = lambda;
     s.axial.w = k;
-}
-
-// A spring of frequency `hertz` and damping ratio `damping` on the bodies' effective mass
-// (or moment, unit h^2) along row r, whose value is the coordinate's distance from where the
-// spring pulls to and `moved` its change over the step so far; stepped implicitly, its
-// stiffness k and damping c over the step act as k + c / dt: a row of multiplier f at
-// C = 0 with that stiffness.
-void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
-                      float damping, vec3 rb)
-{
-    float h = block_h(), omega = 6.2831853 * hertz;
-    float mass = unit * h * h;
-    float k = mass * omega * omega, c = 2.0 * mass * damping * omega;
-    float lambda = -(k * r.C + c * moved / h), stiffness = k + c / h;
-    r.C = 0.0;
-    joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
 }
 
 // The twist of B about A's x axis, in (-pi, pi].

@@ -287,12 +287,13 @@ TB_STRUCT(tb_gpu_counters) {
 #define TB_GPU_JOINT_SPRING     TB_U(0x400) /* a spring (distance: to the rest length instead of
                                                a rod; hinge, slider: to the target) */
 #define TB_GPU_JOINT_BREAKABLE  TB_U(0x800) /* breaks past motor.zw */
-/* A 6-dof joint's axis i (0-2 along A's axes, 3-5 turns about them) is free, limited or
- * locked: two bits of info.z from TB_GPU_JOINT_AXIS_SHIFT + 2 i. */
+/* A 6-dof joint's axis i (0-2 along A's axes, 3-5 turns about them) is locked, free or
+ * limited (tb_joint_axis_mode's values): two bits of info.z from
+ * TB_GPU_JOINT_AXIS_SHIFT + 2 i. The kinds above are tb_joint_kind's. */
 #define TB_GPU_JOINT_AXIS_SHIFT   12
-#define TB_GPU_JOINT_AXIS_FREE    TB_U(0)
-#define TB_GPU_JOINT_AXIS_LIMITED TB_U(1)
-#define TB_GPU_JOINT_AXIS_LOCKED  TB_U(2)
+#define TB_GPU_JOINT_AXIS_LOCKED  TB_U(0)
+#define TB_GPU_JOINT_AXIS_FREE    TB_U(1)
+#define TB_GPU_JOINT_AXIS_LIMITED TB_U(2)
 #define TB_GPU_JOINT_SOFT       TB_U(0x1000000) /* its held rows are springs (lower.w Hz,
                                                    upper.w damping ratio) */
 /* The slot of the filter table where the pair of body slots + 1 (lo < hi) is first looked

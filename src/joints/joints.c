@@ -133,9 +133,7 @@ static uint32_t six_dof_axes(const tb_joint_def* d, tb_gpu_joint* g)
     uint32_t flags = 0;
     for (int i = 0; i < 6; i++) {
         const tb_joint_axis* x = &d->axes[i];
-        uint32_t mode = x->mode == TB_JOINT_AXIS_FREE      ? TB_GPU_JOINT_AXIS_FREE
-                        : x->mode == TB_JOINT_AXIS_LIMITED ? TB_GPU_JOINT_AXIS_LIMITED
-                                                           : TB_GPU_JOINT_AXIS_LOCKED;
+        uint32_t mode = (uint32_t)x->mode;   /* checked: one of the three */
         flags |= mode << (TB_GPU_JOINT_AXIS_SHIFT + 2 * i);
         *lower[i] = mode == TB_GPU_JOINT_AXIS_LIMITED ? x->lower : 0.0f;
         *upper[i] = mode == TB_GPU_JOINT_AXIS_LIMITED ? x->upper : 0.0f;

@@ -31,6 +31,8 @@ int scene_quat_finite(tb_quat q);
 
 /// Deepest overlap among the last step's contact points, m (0 when none overlap).
 tb_result scene_max_penetration(tb_world* world, double* out);
+/// A static plane y = 0 (stacks.c).
+tb_result scene_ground_plane(tb_world* world);
 /// Append a named figure to `out` (dropped beyond SCENE_MAX_CHECKS).
 void scene_put(scene_checks* out, const char* key, double value);
 
@@ -128,7 +130,6 @@ uint32_t pyramid_base(uint32_t n);
 /// A static box (posts, anchors to hang things from).
 tb_result joints_static_box(tb_world* world, tb_vec3 centre, tb_vec3 half, tb_body_id* out);
 /// A static plane, its surface at y = 0.
-tb_result joints_ground(tb_world* world);
 /// A default joint of `kind` between a and b, anchors and frames set at the world point
 /// `point` with the frames' x axes along `axis` (tb_joint_def_at).
 tb_result joints_def_at(tb_world* world, tb_joint_kind kind, tb_body_id a, tb_body_id b,
@@ -144,16 +145,16 @@ tb_vec3 joints_add(tb_vec3 a, tb_vec3 b);
 double joints_distance(tb_vec3 a, tb_vec3 b);
 /// The angle between two directions, rad (atan2, exact near 0 where acos is not).
 double joints_angle_between(tb_vec3 u, tb_vec3 v);
-/// The instance's bodies' poses (malloc'd; free both) and how many are not finite.
-tb_result joints_read_poses(tb_world* world, const scene_instance* inst, tb_vec3** pos,
-                            tb_quat** rot, uint32_t* nan);
 /// Every joint of the world: how many, the largest distance between a joint's two world
 /// anchors (m; every kind the scenes use holds them together) and how many broke.
 typedef struct joints_census {
     uint32_t count, broken;
     double max_gap;
 } joints_census;
-tb_result joints_take_census(tb_world* world, joints_census* out);
+/// The instance's bodies' poses (malloc'd; free both), how many are not finite, and the
+/// census of the world's joints: what every joint scene checks.
+tb_result joints_read_poses(tb_world* world, const scene_instance* inst, tb_vec3** pos,
+                            tb_quat** rot, uint32_t* nan, joints_census* census);
 
 /* joints_chain.c */
 tb_result chain_build(tb_world* world, const scene_params* params, scene_instance** out);

@@ -23,19 +23,6 @@ tb_result joints_static_box(tb_world* w, tb_vec3 centre, tb_vec3 half, tb_body_i
     return tb_body_create(w, &d, out);
 }
 
-tb_result joints_ground(tb_world* w)
-{
-    tb_shape_def sd = tb_default_shape_def();
-    tb_shape_id plane;
-    tb_result r = tb_shape_create_plane(w, &sd, (tb_vec3){ 0, 1, 0 }, 0.0f, &plane);
-    if (r != TB_OK) return r;
-    tb_body_def d = tb_default_body_def();
-    d.type = TB_BODY_STATIC;
-    d.shape = plane;
-    tb_body_id id;
-    return tb_body_create(w, &d, &id);
-}
-
 tb_result joints_def_at(tb_world* w, tb_joint_kind kind, tb_body_id a, tb_body_id b,
                         tb_vec3 point, tb_vec3 axis, tb_joint_def* out)
 {
@@ -101,21 +88,7 @@ double joints_angle_between(tb_vec3 u, tb_vec3 v)
 
 /* ---- figures ---- */
 
-tb_result joints_read_poses(tb_world* w, const scene_instance* inst, tb_vec3** pos,
-                            tb_quat** rot, uint32_t* nan)
-{
-    uint32_t n = inst->count;
-    *pos = malloc((n ? n : 1) * sizeof **pos);
-    *rot = malloc((n ? n : 1) * sizeof **rot);
-    *nan = 0;
-    tb_result r = *pos && *rot ? TB_OK : TB_ERROR_OUT_OF_MEMORY;
-    if (r == TB_OK && n) r = tb_world_read_transforms(w, inst->ids, n, *pos, *rot);
-    for (uint32_t i = 0; r == TB_OK && i < n; i++)
-        if (!scene_vec3_finite((*pos)[i]) || !scene_quat_finite((*rot)[i])) (*nan)++;
-    return r;
-}
-
-tb_result joints_take_census(tb_world* w, joints_census* out)
+static tb_result take_census(tb_world* w, joints_census* out)
 {
     *out = (joints_census){ 0, 0, 0.0 };
     uint32_t n = tb_world_joint_ids(w, NULL, 0);
@@ -141,3 +114,18 @@ tb_result joints_take_census(tb_world* w, joints_census* out)
     free(broken);
     return r;
 }
+
+tb_result joints_read_poses(tb_world* w, const scene_instance* inst, tb_vec3** pos,
+                            tb_quat** rot, uint32_t* nan, joints_census* census)
+{
+    uint32_t n = inst->count;
+    *pos = malloc((n ? n : 1) * sizeof **pos);
+    *rot = malloc((n ? n : 1) * sizeof **rot);
+    *nan = 0;
+    tb_result r = *pos && *rot ? TB_OK : TB_ERROR_OUT_OF_MEMORY;
+    if (r == TB_OK && n) r = tb_world_read_transforms(w, inst->ids, n, *pos, *rot);
+    for (uint32_t i = 0; r == TB_OK && i < n; i++)
+        if (!scene_vec3_finite((*pos)[i]) || !scene_quat_finite((*rot)[i])) (*nan)++;
+    return r == TB_OK ? take_census(w, census) : r;
+}
+

@@ -124,7 +124,7 @@ tb_result bridge_build(tb_world* w, const scene_params* params, scene_instance**
     if (r == TB_OK) r = bridge_bodies(w, n, points, inst);
     if (r == TB_OK) r = bridge_posts(w, n, posts);
     if (r == TB_OK) r = bridge_hinges(w, n, points, inst->ids, posts);
-    if (r == TB_OK) r = joints_ground(w);
+    if (r == TB_OK) r = scene_ground_plane(w);
     free(points);
     if (r != TB_OK) {
         instance_free(inst);
@@ -159,8 +159,7 @@ tb_result bridge_check(tb_world* w, const scene_instance* inst, uint32_t steps, 
     tb_quat* rot;
     uint32_t nan;
     joints_census joints;
-    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan);
-    if (r == TB_OK) r = joints_take_census(w, &joints);
+    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan, &joints);
     if (r == TB_OK) {
         uint32_t planks = inst->count - 1, middle = planks / 2;
         out->count = 0;

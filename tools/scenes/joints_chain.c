@@ -138,8 +138,7 @@ tb_result chain_check(tb_world* w, const scene_instance* inst, uint32_t steps, f
     uint32_t nan;
     joints_census joints;
     double length_error = 0.0;
-    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan);
-    if (r == TB_OK) r = joints_take_census(w, &joints);
+    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan, &joints);
     if (r == TB_OK) r = chain_length_error(w, inst->count, &length_error);
     if (r == TB_OK) {
         out->count = 0;
@@ -261,8 +260,7 @@ tb_result joint_grid_check(tb_world* w, const scene_instance* inst, uint32_t ste
     tb_quat* rot;
     uint32_t nan;
     joints_census joints;
-    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan);
-    if (r == TB_OK) r = joints_take_census(w, &joints);
+    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan, &joints);
     if (r == TB_OK) {
         /* The sphere nearest the centre: the middle row and column (row 0 is static). */
         uint32_t side = inst->side, row = side / 2, col = side / 2;

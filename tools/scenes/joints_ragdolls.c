@@ -155,7 +155,7 @@ tb_result ragdolls_build(tb_world* w, const scene_params* params, scene_instance
     for (uint32_t k = 0; r == TB_OK && k < n; k++)
         r = ragdoll_joints(w, k, at[k], turn[k], inst, joints + k * RAGDOLL_JOINTS);
     if (r == TB_OK) r = joints_create(w, joints, n * RAGDOLL_JOINTS);
-    if (r == TB_OK) r = joints_ground(w);
+    if (r == TB_OK) r = scene_ground_plane(w);
     free(bodies);
     free(joints);
     free(at);
@@ -197,14 +197,13 @@ tb_result ragdolls_check(tb_world* w, const scene_instance* inst, uint32_t steps
     uint32_t nan, below = 0, resting = 0;
     joints_census joints;
     double depth = 0.0;
-    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan);
+    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan, &joints);
     for (uint32_t i = 0; r == TB_OK && i < inst->count; i++) {
         tb_vec3 v, av;
         below += pos[i].y < 0.0f;
         r = tb_body_get_velocity(w, inst->ids[i], &v, &av);
         if (r == TB_OK && sqrtf(v.x * v.x + v.y * v.y + v.z * v.z) < RAGDOLL_REST_SPEED) resting++;
     }
-    if (r == TB_OK) r = joints_take_census(w, &joints);
     if (r == TB_OK) r = scene_max_penetration(w, &depth);
     if (r == TB_OK) {
         out->count = 0;

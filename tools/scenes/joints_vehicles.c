@@ -124,7 +124,7 @@ tb_result vehicles_build(tb_world* w, const scene_params* params, scene_instance
     if (!inst) return TB_ERROR_OUT_OF_MEMORY;
     tb_result r = car_bodies(w, n, inst);
     if (r == TB_OK) r = car_hinges(w, n, inst);
-    if (r == TB_OK) r = joints_ground(w);
+    if (r == TB_OK) r = scene_ground_plane(w);
     if (r != TB_OK) {
         instance_free(inst);
         return r;
@@ -159,7 +159,7 @@ tb_result vehicles_check(tb_world* w, const scene_instance* inst, uint32_t steps
     uint32_t nan, flipped = 0, cars = inst->count / CAR_BODIES;
     double sum = 0.0, slowest = INFINITY, fastest = -INFINITY;
     joints_census joints;
-    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan);
+    tb_result r = joints_read_poses(w, inst, &pos, &rot, &nan, &joints);
     for (uint32_t k = 0; r == TB_OK && k < cars; k++) {
         tb_vec3 v, av;
         r = tb_body_get_velocity(w, inst->ids[k], &v, &av);
@@ -168,7 +168,6 @@ tb_result vehicles_check(tb_world* w, const scene_instance* inst, uint32_t steps
         if (v.x > fastest) fastest = v.x;
         flipped += joints_rotate(rot[k], (tb_vec3){ 0, 1, 0 }).y < 0.5f;
     }
-    if (r == TB_OK) r = joints_take_census(w, &joints);
     if (r == TB_OK) {
         out->count = 0;
         scene_put(out, "nan", nan);

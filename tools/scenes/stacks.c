@@ -31,7 +31,7 @@
 #define COLUMNS_JITTER 0.04f  /* m */
 #define COLUMNS_GAP 0.1f      /* m between a column's boxes at the start */
 
-static tb_result ground_plane(tb_world* w)
+tb_result scene_ground_plane(tb_world* w)
 {
     tb_shape_def sd = tb_default_shape_def();
     tb_shape_id plane;
@@ -72,7 +72,7 @@ static tb_result boxes_at(tb_world* w, uint32_t count,
     }
     /* Dynamic bodies first, so their ids lead the instance's list. */
     if (r == TB_OK && count) r = tb_body_create_many(w, defs, count, inst->ids);
-    if (r == TB_OK) r = ground_plane(w);
+    if (r == TB_OK) r = scene_ground_plane(w);
     free(defs);
     if (r != TB_OK) {
         instance_free(inst);

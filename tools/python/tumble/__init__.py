@@ -1131,8 +1131,8 @@ class World:
             if value is not None:
                 setattr(template, name, _real(name, value))
         if spring is not None and np.size(spring) == 3:
-            template.spring_target = _vector("spring", spring, 3).tolist()[2]
-            spring = tuple(np.asarray(spring, dtype=float).tolist()[:2])
+            hertz, damping_ratio, template.spring_target = _vector("spring", spring, 3).tolist()
+            spring = (hertz, damping_ratio)
         for name, value, enable, fields in (
                 ("limit", limit, "enable_limit", ("lower", "upper")),
                 ("motor", motor, "enable_motor", ("motor_speed", "max_motor_force")),
