@@ -320,6 +320,106 @@ static void test_wide_sweeps_agree(void** state)
     }
 }
 
+/* The fused solve (every sweep of the step in one workgroup, block/solve_fused) against a
+ * dispatch a colour, held by TUMBLE_BLOCK_FUSED: the same bodies move by the same steps in the
+ * same order, so the same states to the bit. A pile of 72 boxes and balls (on lavapipe two
+ * passes of the fused workgroup a colour) with a bouncy ball among them, and a hanging chain
+ * of ten links with a box under it (the sweeps with the joints' rows). */
+static uint32_t fused_dispatches;
+
+static void fused_log(void* user, tb_log_level level, const char* message)
+{
+    unsigned stages, dispatches;
+    if (sscanf(message, "step recorded: %u stages, %u dispatches", &stages, &dispatches) == 2)
+        fused_dispatches = dispatches;
+    th_log_fn(user, level, message);
+}
+
+enum { FUSED_BODIES = 72 };
+
+static void fused_run(int joints, const char* fused, tb_vec3* at, tb_quat* q, uint32_t* dispatches)
+{
+    setenv("TUMBLE_BLOCK_FUSED", fused, 1);
+    setenv("TUMBLE_BLOCK_LANES", "8", 1);   /* the same lanes both ways on a GPU too */
+    tb_world_def def = tb_default_world_def();
+    def.log = fused_log;
+    th_log log = { 0 };
+    def.log_user = &log;
+    tb_world* w = NULL;
+    th_assert_ok(tb_world_create(&def, &w));
+    unsetenv("TUMBLE_BLOCK_FUSED");
+    unsetenv("TUMBLE_BLOCK_LANES");
+    tb_body_def ground = th_static_def(th_plane(w, th_v3(0, 1, 0), 0), th_v3(0, 0, 0));
+    th_body(w, &ground);
+    tb_shape_id shapes[3] = { th_box(w, th_v3(0.2f, 0.2f, 0.2f)), th_sphere(w, 0.2f),
+                              bouncy_sphere(w, 0.2f, 0.6f) };
+    th_rng rng = th_rng_seed(5);
+    tb_body_id ids[FUSED_BODIES];
+    uint32_t n = 0;
+    if (joints) {
+        tb_body_id last = th_post(w, th_v3(0, 4, 0));
+        tb_shape_id link = th_box(w, th_v3(0.15f, 0.05f, 0.05f));
+        for (int i = 0; i < 10; i++) {
+            tb_body_def d = th_dynamic_def(link, th_v3(0.15f + 0.3f * (float)i, 4, 0));
+            ids[n] = th_body(w, &d);
+            tb_joint_def jd = th_joint_def_at(w, TB_JOINT_BALL, last, ids[n],
+                                              th_v3(0.3f * (float)i, 4, 0), th_v3(0, 0, 1));
+            th_joint(w, &jd);
+            last = ids[n++];
+        }
+    }
+    while (n < (joints ? 12u : (uint32_t)FUSED_BODIES)) {
+        tb_body_def d = th_dynamic_def(shapes[n % 3], th_v3(th_rng_range(&rng, -1.5f, 1.5f),
+                                       0.3f + 0.45f * (float)(n / 16), th_rng_range(&rng, -1.5f, 1.5f)));
+        d.rotation = th_rng_quat(&rng);
+        ids[n++] = th_body(w, &d);
+    }
+    th_assert_ok(tb_world_step_n(w, 1.0f / 60, 40));
+    th_assert_ok(tb_world_read_transforms(w, ids, n, at, q));
+    *dispatches = fused_dispatches;
+    tb_world_stats stats = th_stats(w);
+    assert_int_equal(stats.validation_messages, 0);
+    assert_int_equal(log.warnings, 0);
+    tb_world_destroy(w);
+}
+
+static void test_fused_solve_agrees(void** state)
+{
+    (void)state;
+    for (int joints = 0; joints < 2; joints++) {
+        tb_vec3 at[2][FUSED_BODIES];
+        tb_quat q[2][FUSED_BODIES];
+        uint32_t dispatches[2];
+        memset(at, 0, sizeof at);
+        memset(q, 0, sizeof q);
+        fused_run(joints, "0", at[0], q[0], &dispatches[0]);
+        fused_run(joints, "1", at[1], q[1], &dispatches[1]);
+        print_message("  %s: %u dispatches a step a colour at a time, %u fused\n",
+                      joints ? "chain" : "pile", dispatches[0], dispatches[1]);
+        /* 30 sweeps of two colours or more in one dispatch. */
+        assert_true(dispatches[0] >= dispatches[1] + 50);
+        assert_memory_equal(at[0], at[1], sizeof at[0]);
+        assert_memory_equal(q[0], q[1], sizeof q[0]);
+        /* Something moved: the pile's top body (2.55 m up) fell, the chain's end (4 m) swung down. */
+        assert_true(at[0][joints ? 9 : FUSED_BODIES - 1].y < (joints ? 3.7f : 2.2f));
+    }
+}
+
+/* Small worlds fuse their sweeps on a GPU; a CPU device's and a world with the tail never
+ * do unless told; TUMBLE_BLOCK_FUSED decides when set. */
+static void test_fused_choice(void** state)
+{
+    (void)state;
+    assert_int_equal(tb_block_fuses(20, 3, 0, -1), 1);
+    assert_int_equal(tb_block_fuses(TB_BLOCK_FUSED_BODIES, 8, 0, -1), 1);
+    assert_int_equal(tb_block_fuses(TB_BLOCK_FUSED_BODIES + 1, 8, 0, -1), 0);
+    assert_int_equal(tb_block_fuses(20, 3, 1, -1), TB_BLOCK_FUSED_BODIES_CPU >= 20);
+    assert_int_equal(tb_block_fuses(20, TB_MAX_COLOURS, 0, -1), 0);
+    assert_int_equal(tb_block_fuses(20, TB_MAX_COLOURS, 0, 1), 0);
+    assert_int_equal(tb_block_fuses(100000, 8, 1, 1), 1);
+    assert_int_equal(tb_block_fuses(20, 3, 0, 0), 0);
+}
+
 /* The sweeps' lanes a body (8, 16, 32) follow the bodies and their contact points, with a
  * margin before a change. (On lavapipe every sweep runs 1 lane a body, so the choice is
  * checked here and its speed on a GPU, docs/performance.md.) */
@@ -410,6 +510,8 @@ int main(void)
         cmocka_unit_test(test_crowd_with_the_wide_tail),
         cmocka_unit_test(test_lanes_choice),
         cmocka_unit_test(test_wide_sweeps_agree),
+        cmocka_unit_test(test_fused_solve_agrees),
+        cmocka_unit_test(test_fused_choice),
         cmocka_unit_test(test_solver_choice),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

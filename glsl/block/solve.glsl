@@ -19,8 +19,9 @@
 // on a GPU block/solve_tail's (solve_tail below), on a CPU device solve_tail_narrow's.
 //
 // The sweep's shaders (block/solve, block/solve_16, block/solve_32) are this file with
-// BLOCK_LANES lanes a body (TB_BLOCK_LANES, block.glsl). Needs GL_KHR_shader_subgroup_basic
-// and _shuffle, which they enable.
+// BLOCK_LANES lanes a body (TB_BLOCK_LANES, block.glsl); block/solve_fused (TB_BLOCK_FUSED)
+// runs every sweep of a small world's step in one workgroup (its main, at the end). Needs
+// GL_KHR_shader_subgroup_basic and _shuffle, which they enable.
 #ifndef TB_BLOCK_SOLVE_GLSL
 #define TB_BLOCK_SOLVE_GLSL
 
@@ -279,6 +280,10 @@ void move_body(newton e, uint i, tb_gpu_solver_body me, uint lane, out vec3 my_d
     my_v = rotation_vector(my_dq);
 }
 
+// Whether this is the step's last sweep: each main sets it (push.args.y, or the fused
+// solve's count of its sweeps).
+bool sweep_is_last = false;
+
 // Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
 // (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
 // together, `valid` false on lanes without a body (beyond the colour's bodies).
@@ -303,7 +308,7 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     // The multipliers of the contacts whose other body has already moved are updated here,
     // by the last of their bodies to move, so no pass of its own after the sweep needs a
     // dispatch and a read of every contact.
-    bool last = push.args.y != 0u;
+    bool last = sweep_is_last;
     if (has_kept) update_item(kept, order, my_dp, my_v, last);
     for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
         update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
@@ -350,7 +355,7 @@ void solve_tail()
     if (count == 0u) return;
     uint lane = gl_LocalInvocationIndex, lanes = gl_WorkGroupSize.x;
     uint start = block_tail_start();
-    bool last = push.args.y != 0u;
+    bool last = sweep_is_last;
     for (uint t = 0u; t < count; t++) {
         uvec4 listed = block_list[start + t];
         uint i = listed.x, first = listed.y, items = listed.z;
@@ -372,7 +377,39 @@ void solve_tail()
 void main()
 {
     if (step_aborted()) return;
+    sweep_is_last = push.args.y != 0u;
     solve_tail();
+}
+#elif defined(TB_BLOCK_FUSED)
+// The whole solve of a small world's step in one workgroup (block/solve_fused; push.args.x
+// the colours recorded, y the sweeps, z the over-relaxation): every sweep over the colours
+// in order, a colour's bodies BLOCK_LANES lanes each and as many at once as the workgroup
+// holds, the workgroup's barrier between two colours in place of a dispatch and the
+// barrier after it. The bodies move in the same order by the same steps as in the sweeps'
+// dispatches, so the results are the same to the bit (at the same lanes a body). Recorded on
+// a GPU while a world has few bodies and no tail (tb_block_fuses), where a colour's launch
+// and barrier (about 2.5 us) are much of its time and a step has 30 sweeps of them; one SM
+// walking a large world's colours 32 bodies at a time is slower than a dispatch each, and
+// on lavapipe the workgroup's barriers cost more than the dispatches they replace.
+void main()
+{
+    if (step_aborted()) return;
+    uint lane = gl_SubgroupInvocationID % BLOCK_LANES;
+    uint here = (gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID) / BLOCK_LANES;
+    uint at_once = gl_WorkGroupSize.x / BLOCK_LANES;
+    for (uint sweep = 0u; sweep < push.args.y; sweep++) {
+        sweep_is_last = sweep + 1u == push.args.y;
+        for (uint c = 0u; c < push.args.x; c++) {
+            uint count = counters.colour[c].x, start = counters.colour[c].y;
+            for (uint first = 0u; first < count; first += at_once) {
+                uint slot = first + here;
+                bool valid = slot < count;
+                solve_body(valid ? block_list[start + slot] : uvec4(0u), lane, valid, c);
+            }
+            memoryBarrierBuffer();
+            barrier();
+        }
+    }
 }
 #else
 // The tail on a CPU device (push.args.x = TB_MAX_COLOURS, one workgroup), where the sweep
@@ -393,6 +430,7 @@ void solve_tail_narrow()
 void main()
 {
     if (step_aborted()) return;
+    sweep_is_last = push.args.y != 0u;
     uint colour = push.args.x;
     if (colour >= TB_MAX_COLOURS) {
         solve_tail_narrow();

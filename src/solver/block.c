@@ -72,6 +72,8 @@ void tb_block_destroy(tb_block_solver* s)
     if (s->solve_joints) tb_pipeline_destroy(s->pipelines, s->solve_joints);
     if (s->solve_tail_joints) tb_pipeline_destroy(s->pipelines, s->solve_tail_joints);
     if (s->solve_tail) tb_pipeline_destroy(s->pipelines, s->solve_tail);
+    if (s->solve_fused) tb_pipeline_destroy(s->pipelines, s->solve_fused);
+    if (s->solve_fused_joints) tb_pipeline_destroy(s->pipelines, s->solve_fused_joints);
     memset(s, 0, sizeof *s);
 }
 
@@ -155,7 +157,7 @@ static tb_result per_joint(const tb_block_solver* s, tb_pass_list* list, VkPipel
     return tb_pass_list_add(list, s->pipelines->gpu->diag, &pass);
 }
 
-tb_result tb_block_prepare_joints(tb_block_solver* s)
+tb_result tb_block_prepare_joints(tb_block_solver* s, int sweeps)
 {
     tb_result r = TB_OK;
     r = tb_pipeline_create_once(s->pipelines, "block/joint_count", TB_WORKGROUP_SIZE,
@@ -164,15 +166,31 @@ tb_result tb_block_prepare_joints(tb_block_solver* s)
                                         &s->joint_fill);
     if (!r) r = tb_pipeline_create_once(s->pipelines, "block/joint_start", TB_WORKGROUP_SIZE,
                                         &s->joint_start);
-    if (!r) r = tb_pipeline_create_once(s->pipelines, "block/solve_joints",
-                                        TB_SOLVER_WORKGROUP_SIZE, &s->solve_joints);
+    if (!r && sweeps) r = tb_pipeline_create_once(s->pipelines, "block/solve_joints",
+                                                  TB_SOLVER_WORKGROUP_SIZE, &s->solve_joints);
     /* The tail's own sweep only where block/solve_tail is made (tb_block_init). */
-    if (!r && s->solve_tail)
+    if (!r && sweeps && s->solve_tail)
         r = tb_pipeline_create_once(s->pipelines, "block/solve_tail_joints",
                                     s->pipelines->gpu->is_cpu ? TB_SOLVER_WORKGROUP_SIZE
                                                               : TB_BLOCK_TAIL_WORKGROUP_SIZE,
                                     &s->solve_tail_joints);
     return r;
+}
+
+int tb_block_fuses(uint32_t bodies, uint32_t colours, int cpu_device, int forced)
+{
+    if (colours >= TB_MAX_COLOURS) return 0;   /* the tail is solved by its own pass */
+    if (forced >= 0) return forced;
+    return bodies <= (cpu_device ? TB_BLOCK_FUSED_BODIES_CPU : TB_BLOCK_FUSED_BODIES);
+}
+
+tb_result tb_block_prepare_fused(tb_block_solver* s, int joints)
+{
+    return tb_pipeline_create_once(s->pipelines, joints ? "block/solve_fused_joints"
+                                                        : "block/solve_fused",
+                                   s->pipelines->gpu->is_cpu ? TB_BLOCK_FUSED_WORKGROUP_SIZE_CPU
+                                                             : TB_BLOCK_FUSED_WORKGROUP_SIZE,
+                                   joints ? &s->solve_fused_joints : &s->solve_fused);
 }
 
 uint32_t tb_block_colouring_rounds(uint32_t colours)
@@ -244,7 +262,7 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t lanes,
                                 const tb_block_settings* settings, int restitution,
-                                uint32_t joint_capacity)
+                                uint32_t joint_capacity, int fused)
 {
     VkPipeline sweep = lanes >= 32 ? s->solve_32 : lanes >= 16 ? s->solve_16 : s->solve;
     VkPipeline tail = s->solve_tail ? s->solve_tail : sweep;
@@ -258,7 +276,14 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
-    for (uint32_t it = 0; it < iterations && !r; it++)
+    if (fused) {
+        tb_pass all = tb_pass_with_args(joint_capacity ? s->solve_fused_joints : s->solve_fused,
+                                        TB_DISPATCH_FIXED, counters, 0, colours, iterations,
+                                        relax);
+        all.writes_no_arguments = 1;
+        if (!r) r = tb_pass_list_add(list, s->pipelines->gpu->diag, &all);
+    }
+    for (uint32_t it = 0; it < iterations && !r && !fused; it++)
         r = over_colours(s, list, counters, sweep, tail, colours, it + 1 == iterations, relax);
     if (!r) r = per_body(s, list, s->end, counters, 0);
     if (!r && restitution)

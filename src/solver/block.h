@@ -37,6 +37,7 @@ typedef struct tb_block_solver {
     VkPipeline solve, solve_16, solve_32;   ///< the sweep with 8, 16 and 32 lanes a body
     VkPipeline solve_tail;                  ///< the sweep over the tail, a workgroup a body
                                             ///< (GPUs; NULL: the sweep's own tail)
+    VkPipeline solve_fused, solve_fused_joints; ///< every sweep in one workgroup (small worlds)
 } tb_block_solver;
 
 /// What building the contact lists needs: the list starts (uint per body slot, scanned in
@@ -84,9 +85,20 @@ uint32_t tb_block_colouring_rounds(uint32_t colours);
 /// on first use, as the step is recorded).
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
 
-/// Make the joints' count, fill and start, and the sweeps with joints (the first time a
-/// world records joints; its sweeps then have 8 lanes a body).
-tb_result tb_block_prepare_joints(tb_block_solver* s);
+/// Make the joints' count, fill and start, and with `sweeps` the sweeps with joints (the
+/// first time a world records joints; its sweeps then have 8 lanes a body).
+tb_result tb_block_prepare_joints(tb_block_solver* s, int sweeps);
+
+/// Whether a world of `bodies` live bodies whose step records `colours` colours solves in
+/// one workgroup (block/solve_fused: every sweep of the step in one dispatch, the same
+/// results to the bit at the same lanes a body): while its bodies are few
+/// (TB_BLOCK_FUSED_BODIES on a GPU, where a colour's dispatch is then mostly launch and
+/// barrier; TB_BLOCK_FUSED_BODIES_CPU on a CPU device) and it has no tail. `forced` 0 or 1
+/// decides instead (TUMBLE_BLOCK_FUSED; -1: not set). H200 figures: docs/performance.md.
+int tb_block_fuses(uint32_t bodies, uint32_t colours, int cpu_device, int forced);
+
+/// Make the fused solve, with or without the joints' rows (on its first use).
+tb_result tb_block_prepare_fused(tb_block_solver* s, int joints);
 
 /// The lanes a body for the sweeps (8, 16 or 32; a GPU whose subgroup is narrower, or a CPU
 /// device, uses fewer: glsl/block/block.glsl), from the world's bodies and the contact
@@ -98,6 +110,11 @@ tb_result tb_block_prepare_joints(tb_block_solver* s);
 /// colour's bodies outnumber the threads the GPU runs at once (boxes 10,000: 1.13, 1.17,
 /// 1.48; 100,000: 4.00, 5.57, 9.50).
 uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t current);
+
+#define TB_BLOCK_FUSED_BODIES 64        ///< a GPU's small world (tb_block_fuses)
+#define TB_BLOCK_FUSED_BODIES_CPU 0     ///< a CPU device's: none (lavapipe's barriers cost more)
+#define TB_BLOCK_FUSED_WORKGROUP_SIZE 256       ///< on a GPU: 32 bodies at once
+#define TB_BLOCK_FUSED_WORKGROUP_SIZE_CPU 64    ///< on a CPU device, one lane a body
 
 /// The contact list of every dynamic body and the colouring of the dynamic bodies:
 /// reset, count (and the joints' count, with lists->joint_capacity), scan, fill (and the
@@ -116,10 +133,11 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
 /// then the velocities, and with `restitution` (some shape of the world has restitution) a
 /// pass over the colours that makes fast contacts bounce (glsl/block/bounce.comp).
 /// (Sweeping the colours back on every other iteration, a symmetric Gauss-Seidel, measured
-/// worse: a 20-box column sank 8.4 cm instead of 8.6 mm.)
+/// worse: a 20-box column sank 8.4 cm instead of 8.6 mm.) With `fused` (tb_block_fuses;
+/// never with the tail) every sweep is one dispatch of block/solve_fused instead.
 tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                 uint32_t colours, uint32_t lanes,
                                 const tb_block_settings* settings, int restitution,
-                                uint32_t joint_capacity);
+                                uint32_t joint_capacity, int fused);
 
 #endif

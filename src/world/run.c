@@ -182,6 +182,15 @@ static void fit_block_lanes(tb_world* w, const tb_gpu_counters* c)
     w->step_built = 0;
 }
 
+/* The block solver's sweeps in one workgroup while the world is small, a dispatch a colour
+ * once it is not (tb_block_fuses): bodies created or destroyed, or the tail taken up. */
+static void fit_block_fused(tb_world* w)
+{
+    if (w->block_solver && w->block_fused != tb_block_fuses(w->body_slots.live, w->colour_rounds,
+                                                            w->gpu.is_cpu, w->block_fused_forced))
+        w->step_built = 0;
+}
+
 /* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */
 static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
 {
@@ -210,6 +219,7 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     else if (!r) {
         fit_colour_rounds(w, c);
         fit_block_lanes(w, c);
+        fit_block_fused(w);
     }
     return r;
 }

@@ -158,8 +158,13 @@ static void block_colour_stage(builder* b)
         .joint_capacity = w->joints.slots.used ? w->joints.capacity : 0,
     };
     w->joint_passes = lists.joint_capacity;
-    if (!b->r) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);
-    if (!b->r && lists.joint_capacity) b->r = tb_block_prepare_joints(&w->block);
+    w->block_fused = tb_block_fuses(w->body_slots.live, w->colour_rounds, w->gpu.is_cpu,
+                                    w->block_fused_forced);
+    /* Only the sweeps the step records are made: each takes long to compile on lavapipe. */
+    if (!b->r && w->block_fused) b->r = tb_block_prepare_fused(&w->block, lists.joint_capacity > 0);
+    if (!b->r && !w->block_fused) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);
+    if (!b->r && lists.joint_capacity)
+        b->r = tb_block_prepare_joints(&w->block, !w->block_fused);
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
                                                 w->colour_rounds, block_sweep_lanes(w));
     end_stage(b, "solver/colour");
@@ -208,7 +213,7 @@ static void solve_stage(builder* b)
         if (!b->r) b->r = tb_block_record_solve(&w->block, &b->list, b->counters,
                                                 w->colour_rounds, block_sweep_lanes(w),
                                                 &w->block_settings, w->bouncy_shapes > 0,
-                                                w->joint_passes);
+                                                w->joint_passes, w->block_fused);
         end_stage(b, "solver/solve");
         return;
     }

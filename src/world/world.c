@@ -101,6 +101,10 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
         w->block_lanes = (uint32_t)atoi(lanes);
         w->block_lanes_fixed = 1;
     }
+    /* TUMBLE_BLOCK_FUSED=0 or 1 records the block solver's sweeps as a dispatch a colour or
+     * all in one workgroup whatever the world's size (the two give the same results). */
+    const char* fused = getenv("TUMBLE_BLOCK_FUSED");
+    w->block_fused_forced = fused && (!strcmp(fused, "0") || !strcmp(fused, "1")) ? atoi(fused) : -1;
     /* The block solver unless the environment asks for the soft step (TUMBLE_SOLVER=soft). */
     const char* solver = getenv("TUMBLE_SOLVER");
     w->block_solver = !(solver && strcmp(solver, "soft") == 0);

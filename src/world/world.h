@@ -103,6 +103,8 @@ struct tb_world {
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
     uint32_t block_lanes;        ///< lanes a body in the block solver's sweeps (tb_block_lanes_for)
     int block_lanes_fixed;       ///< block_lanes set by TUMBLE_BLOCK_LANES, not chosen
+    int block_fused;             ///< the step records the fused solve (tb_block_fuses)
+    int block_fused_forced;      ///< TUMBLE_BLOCK_FUSED: 0 never, 1 always (no tail), -1 chosen
     uint32_t steps_per_submit;   ///< tb_world_step_n's batches (run.c; TUMBLE_STEPS_PER_SUBMIT)
     uint32_t substeps, solver_iterations;
     float contact_margin, restitution_threshold;
