@@ -323,8 +323,10 @@ static void test_wide_sweeps_agree(void** state)
 /* The fused solve (every sweep of the step in one workgroup, block/solve_fused) against a
  * dispatch a colour, held by TUMBLE_BLOCK_FUSED: the same bodies move by the same steps in the
  * same order, so the same states to the bit. A pile of 72 boxes and balls (on lavapipe two
- * passes of the fused workgroup a colour) with a bouncy ball among them, and a hanging chain
- * of ten links with a box under it (the sweeps with the joints' rows). */
+ * passes of the fused workgroup a colour), bouncy balls among them, and a hanging chain of
+ * ten links with two bodies dropped beside it (the sweeps with the joints' rows). The worlds
+ * log through fused_log, which reads the recorded dispatches, so they are made here, with
+ * validation asked for as th_world_create asks. */
 static uint32_t fused_dispatches;
 
 static void fused_log(void* user, tb_log_level level, const char* message)
@@ -342,6 +344,7 @@ static void fused_run(int joints, const char* fused, tb_vec3* at, tb_quat* q, ui
     setenv("TUMBLE_BLOCK_FUSED", fused, 1);
     setenv("TUMBLE_BLOCK_LANES", "8", 1);   /* the same lanes both ways on a GPU too */
     tb_world_def def = tb_default_world_def();
+    def.validation = 1;
     def.log = fused_log;
     th_log log = { 0 };
     def.log_user = &log;

@@ -186,9 +186,7 @@ static void fit_block_lanes(tb_world* w, const tb_gpu_counters* c)
  * once it is not (tb_block_fuses): bodies created or destroyed, or the tail taken up. */
 static void fit_block_fused(tb_world* w)
 {
-    if (w->block_solver && w->block_fused != tb_block_fuses(w->body_slots.live, w->colour_rounds,
-                                                            w->gpu.is_cpu, w->block_fused_forced))
-        w->step_built = 0;
+    if (w->block_solver && w->block_fused != tb_step_fuses_sweeps(w)) w->step_built = 0;
 }
 
 /* Submit up to n steps; returns how many the GPU completed (fewer when one overflowed). */

@@ -136,6 +136,12 @@ static void narrowphase_stage(builder* b)
 
 /* The lanes a body of the block solver's sweeps: a world with joints sweeps with 8 (its
  * sweep with joints comes in that width only). */
+int tb_step_fuses_sweeps(const tb_world* w)
+{
+    return tb_block_fuses(w->body_slots.live, w->colour_rounds, w->gpu.is_cpu,
+                          w->block_fused_forced);
+}
+
 static uint32_t block_sweep_lanes(const tb_world* w)
 {
     return w->joint_passes ? 8 : w->block_lanes;
@@ -158,8 +164,7 @@ static void block_colour_stage(builder* b)
         .joint_capacity = w->joints.slots.used ? w->joints.capacity : 0,
     };
     w->joint_passes = lists.joint_capacity;
-    w->block_fused = tb_block_fuses(w->body_slots.live, w->colour_rounds, w->gpu.is_cpu,
-                                    w->block_fused_forced);
+    w->block_fused = tb_step_fuses_sweeps(w);
     /* Only the sweeps the step records are made: each takes long to compile on lavapipe. */
     if (!b->r && w->block_fused) b->r = tb_block_prepare_fused(&w->block, lists.joint_capacity > 0);
     if (!b->r && !w->block_fused) b->r = tb_block_prepare_lanes(&w->block, w->block_lanes);

@@ -195,6 +195,9 @@ tb_result tb_step_kernels_create(tb_world* w);
 void tb_step_kernels_destroy(tb_world* w);
 /// Build the step graph for the current capacities and colouring rounds.
 tb_result tb_step_build(tb_world* w);
+/// Whether the world's step, recorded now, would fuse the block solver's sweeps
+/// (tb_block_fuses of its live bodies, recorded colours, device and TUMBLE_BLOCK_FUSED).
+int tb_step_fuses_sweeps(const tb_world* w);
 /// Fill in what the broadphase sees of the step's buffers (they move when they grow).
 void tb_step_broadphase_io(tb_world* w);
 
