@@ -259,32 +259,43 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
     return r;
 }
 
-tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
-                                uint32_t colours, uint32_t lanes,
-                                const tb_block_settings* settings, int restitution,
-                                uint32_t joint_capacity, int fused)
+/* The step's sweeps: all in one dispatch of the fused solve, or a dispatch a colour and
+ * sweep (the tail's own pass where the world has one). */
+static tb_result record_sweeps(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
+                               uint32_t colours, uint32_t lanes, uint32_t iterations,
+                               uint32_t relax, uint32_t joint_capacity, int fused)
 {
+    if (fused) {
+        tb_pass all = tb_pass_with_args(joint_capacity ? s->solve_fused_joints : s->solve_fused,
+                                        TB_DISPATCH_FIXED, counters, 0, colours, iterations,
+                                        relax);
+        all.writes_no_arguments = 1;
+        return tb_pass_list_add(list, s->pipelines->gpu->diag, &all);
+    }
     VkPipeline sweep = lanes >= 32 ? s->solve_32 : lanes >= 16 ? s->solve_16 : s->solve;
     VkPipeline tail = s->solve_tail ? s->solve_tail : sweep;
     if (joint_capacity) {
         sweep = s->solve_joints;
         tail = s->solve_tail_joints ? s->solve_tail_joints : sweep;
     }
-    uint32_t iterations = settings->iterations;
+    tb_result r = TB_OK;
+    for (uint32_t it = 0; it < iterations && !r; it++)
+        r = over_colours(s, list, counters, sweep, tail, colours, it + 1 == iterations, relax);
+    return r;
+}
+
+tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
+                                uint32_t colours, uint32_t lanes,
+                                const tb_block_settings* settings, int restitution,
+                                uint32_t joint_capacity, int fused)
+{
     /* block/solve takes the over-relaxation in thousandths (0: none). */
     uint32_t relax = (uint32_t)lroundf(settings->over_relaxation * 1000.0f);
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
-    if (fused) {
-        tb_pass all = tb_pass_with_args(joint_capacity ? s->solve_fused_joints : s->solve_fused,
-                                        TB_DISPATCH_FIXED, counters, 0, colours, iterations,
-                                        relax);
-        all.writes_no_arguments = 1;
-        if (!r) r = tb_pass_list_add(list, s->pipelines->gpu->diag, &all);
-    }
-    for (uint32_t it = 0; it < iterations && !r && !fused; it++)
-        r = over_colours(s, list, counters, sweep, tail, colours, it + 1 == iterations, relax);
+    if (!r) r = record_sweeps(s, list, counters, colours, lanes, settings->iterations, relax,
+                              joint_capacity, fused);
     if (!r) r = per_body(s, list, s->end, counters, 0);
     if (!r && restitution)
         r = over_colours(s, list, counters, s->bounce, s->bounce, colours, 0, 0);

@@ -134,14 +134,14 @@ static void narrowphase_stage(builder* b)
     }
 }
 
-/* The lanes a body of the block solver's sweeps: a world with joints sweeps with 8 (its
- * sweep with joints comes in that width only). */
 int tb_step_fuses_sweeps(const tb_world* w)
 {
     return tb_block_fuses(w->body_slots.live, w->colour_rounds, w->gpu.is_cpu,
                           w->block_fused_forced);
 }
 
+/* The lanes a body of the block solver's sweeps: a world with joints sweeps with 8 (its
+ * sweep with joints comes in that width only). */
 static uint32_t block_sweep_lanes(const tb_world* w)
 {
     return w->joint_passes ? 8 : w->block_lanes;
