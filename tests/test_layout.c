@@ -22,7 +22,8 @@ static void test_vec4_types(void** state)
 static void test_params_layout(void** state)
 {
     (void)state;
-    assert_int_equal(sizeof(tb_gpu_params), 224);
+    assert_int_equal(sizeof(tb_gpu_params), 240);
+    assert_int_equal(offsetof(tb_gpu_params, block_joints), 224);
     assert_int_equal(offsetof(tb_gpu_params, joint_arrays), 192);
     assert_int_equal(offsetof(tb_gpu_params, joint_info), 208);
     assert_int_equal(offsetof(tb_gpu_params, contact_arrays), 128);
@@ -67,7 +68,7 @@ static void test_joint_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_joint, anchor_a), 16);
     assert_int_equal(offsetof(tb_gpu_joint, frame_b), 64);
     assert_int_equal(offsetof(tb_gpu_joint, motor), 96);
-    assert_int_equal(sizeof(tb_gpu_joint_state), 128);
+    assert_int_equal(sizeof(tb_gpu_joint_state), 160);
     assert_int_equal(offsetof(tb_gpu_joint_state, axial), 32);
     assert_int_equal(offsetof(tb_gpu_joint_state, held_force), 48);
     assert_int_equal(offsetof(tb_gpu_joint_state, force), 80);

@@ -141,6 +141,11 @@ struct joint_work {
     // moved and turned since the step began (a held row's rate)
     float soft_hertz, soft_damping;
     vec3 dpa, va, dpb, vb;
+    // the joint, and its hard equality rows taken so far (joint_hold counts them); `record`:
+    // only write their values, as the error the step begins with (block/joint_start);
+    // `hold_start`: hold them at that error (the step's first sweeps, solve.glsl)
+    uint joint, holds;
+    bool record, hold_start;
 };
 
 // Row r with multiplier lambda and stiffness k (unit: its stiffness unit), its force
@@ -153,7 +158,7 @@ void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout floa
     float f = clamp(lambda - k * r.C, lo, hi);
     if (w.dual) {
         if (f > lo && f < hi)
-            k = min(k + w.growth * unit * abs(r.C), params.block.z * unit);
+            k = min(k + w.growth * unit * abs(r.C), params.block_joints.x * unit);
         lambda = f;
         w.force += f * r.lb;
         w.torque += f * (r.ab - cross(rb, r.lb));
@@ -189,15 +194,29 @@ void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, 
     joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
 }
 
+// The error hard equality row n of joint j began the step with (tb_gpu_joint_state.start_error).
+float joint_start_error(uint j, uint n)
+{
+    return n < 8u ? joint_states[j].start_error[n >> 2][n & 3u] : 0.0;
+}
+
 // An equality row: hard (its multiplier and stiffness), or in a soft joint a spring to 0.
+// In the step's first sweeps a hard row holds the error its step began with (sweep_set,
+// solve.glsl); the later sweeps close it.
 void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float k, float unit,
                 vec3 rb)
 {
+    uint n = w.holds++;
+    if (w.record) {
+        if (n < 8u) joint_states[w.joint].start_error[n >> 2][n & 3u] = r.C;
+        return;
+    }
     if (w.soft_hertz > 0.0) {
         float moved = dot(r.la, w.dpa) + dot(r.aa, w.va) + dot(r.lb, w.dpb) + dot(r.ab, w.vb);
         joint_spring_row(w, r, moved, unit, w.soft_hertz, w.soft_damping, rb);
         return;
     }
+    if (w.hold_start) r.C -= joint_start_error(w.joint, n);
     joint_apply(w, r, lambda, k, unit, -1e30, 1e30, true, rb);
 }
 
@@ -457,6 +476,8 @@ void joint_rows(inout joint_work w, uint j, inout tb_gpu_joint_state s, vec3 dpa
     uint kind = joint_kind(jt);
     w.soft_hertz = joint_has(jt, TB_GPU_JOINT_SOFT) ? jt.lower.w : 0.0;
     w.soft_damping = jt.upper.w;
+    w.joint = j;
+    w.holds = 0u;
     w.dpa = dpa;
     w.va = va;
     w.dpb = dpb;
@@ -529,17 +550,33 @@ joint_work joint_work_primal(bool is_b)
     w.va = vec3(0.0);
     w.dpb = vec3(0.0);
     w.vb = vec3(0.0);
+    w.joint = 0u;
+    w.holds = 0u;
+    w.record = false;
+    w.hold_start = false;
     return w;
+}
+
+// Joint j's hard equality rows' values with its bodies where the step begins, kept as the
+// error the step's first sweeps hold (block/joint_start).
+void joint_record_start(uint j, tb_gpu_joint_state s)
+{
+    joint_work w = joint_work_primal(false);
+    w.record = true;
+    joint_states[j].start_error[0] = vec4(0.0);
+    joint_states[j].start_error[1] = vec4(0.0);
+    joint_rows(w, j, s, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
 }
 
 // The dual update of joint j once both bodies have moved in the sweep: new multipliers and
 // stiffnesses; after the last sweep also the force and torque it put on b, and whether
 // they broke it.
-void joint_dual(uint j, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last)
+void joint_dual(uint j, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last, bool hold_start)
 {
     joint_work w = joint_work_primal(false);
     w.dual = true;
     w.last = last;
+    w.hold_start = hold_start;
     w.growth = params.block.y;
     tb_gpu_joint_state s = joint_states[j];
     joint_rows(w, j, s, dpa, va, dpb, vb);

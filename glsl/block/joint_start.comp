@@ -2,24 +2,24 @@
 #extension GL_GOOGLE_include_directive : require
 // Per joint slot, beside block/start (after the colouring, so a step abandoned there leaves
 // the joints as they were): a joint starts its step as a contact does: its multipliers from
-// the share params.block.w of last step's, its stiffnesses from the larger of the starting
-// stiffness (params.block.x units: its bodies' effective mass, or moment, over dt^2) and
-// the share params.block_more.w of last step's. A slot whose state is of another joint
-// (the slot was reused: the generations differ) starts from nothing.
+// the share params.block_joints.y of last step's, its stiffnesses from the larger of the
+// starting stiffness (params.block.x units: its bodies' effective mass, or moment, over
+// dt^2) and the share params.block_joints.z of last step's; and it keeps the values its hard
+// rows start with, which the step's first sweeps hold (joint_record_start). A slot whose
+// state is of another joint (the slot was reused: the generations differ) starts from
+// nothing.
 #include "joint.glsl"
 
 // A joint starts its step with less of last step's multipliers and stiffnesses than a
-// contact (params.block.w, block_more.w): structures whose joints hold more conditions
-// than their bodies have freedoms, each sweep leaving a little over, gathered multipliers
-// and stiffness from step to step until they shook themselves apart. With a contact's
-// share (0.95 of the multipliers, 0.99 of the stiffness) a 10 x 10 net of spheres on ball
-// joints hanging still opened its joints by 13 cm within 150 steps (lavapipe), and a bridge
-// of 40 hinged planks under a load twisted about its length and turned over by step 200;
-// with half the contacts' multipliers and 0.9 of the stiffness a 20 x 20 net holds within
-// 0.06 mm over 600 steps, a 100-plank bridge within 0.1 mm, and a 20-link chain with a 100
-// times heavier end, swinging, within 1 mm.
-#define JOINT_WARM_SHARE 0.5
-#define JOINT_CARRY 0.9
+// contact (tb_block_settings: 0.475 and 0.9, against 0.95 and 0.99): structures whose
+// joints hold more conditions than their bodies have freedoms, each sweep leaving a little
+// over, gathered multipliers and stiffness from step to step until they shook themselves
+// apart. With a contact's share a 10 x 10 net of spheres on ball joints hanging still
+// opened its joints by 13 cm within 150 steps (lavapipe), and a bridge of 40 hinged planks
+// under a load twisted about its length and turned over by step 200; with half the
+// contacts' multipliers and 0.9 of the stiffness a 20 x 20 net holds within 0.06 mm over
+// 600 steps, a 100-plank bridge within 0.1 mm (NVIDIA H200, docs/joints.md). With the hold
+// sweeps the contact's shares still tore nets and bridges apart.
 
 // The limits that pushed last step, engaged from the step's start (joint_limit_row's bits).
 uint engaged_limits(uint kind, tb_gpu_joint_state s)
@@ -58,7 +58,7 @@ void main()
         return;
     }
     vec2 unit = joint_units(jt) * params.block.x;
-    float warm = params.block.w * JOINT_WARM_SHARE, carry = JOINT_CARRY;
+    float warm = params.block_joints.y, carry = params.block_joints.z;
     uint kind = joint_kind(jt);
     // Last step's force and torque, and whether this step predicts with them: a joint that
     // is all its dynamic bodies have (a pendulum's rod; no other joint, no contact) and
@@ -87,4 +87,5 @@ void main()
                    s.axial.z * warm, max(axial_unit, s.axial.w * carry));
     s.info.z = engaged_limits(kind, s);
     joint_states[j] = s;
+    joint_record_start(j, s);
 }

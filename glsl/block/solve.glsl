@@ -1,5 +1,5 @@
-// The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y = 1
-// in the last sweep of the step; push.args.z the over-relaxation, see over_relaxation):
+// The block solver's sweep over the bodies of one colour (push.args.x = c; push.args.y what
+// the sweep is, sweep_set; push.args.z the over-relaxation, see over_relaxation):
 // body block_list[colour[c].y + b].x, b < counters.colour[c].x, moves by one Newton step on
 //     E(x) = |x - y|^2_M / (2 dt^2) + sum over its contacts of the rows' energies,
 // y the inertial pose (where its velocity after gravity would take it), with the other
@@ -32,6 +32,24 @@
 #include "../integrate/motion.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
+
+// What this sweep is (TB_BLOCK_SWEEP_*): each main sets it from push.args.y, the fused solve
+// from its count of the sweeps. In a world with joints the step's first sweeps (half of
+// them, tb_block_settings.joint_holds) hold each joint's hard rows at the error the step
+// began with (joint_hold): the bodies find the motion that keeps the joints as they were,
+// and the multipliers the load, before the later sweeps close the error. Sweeps that all
+// close it (as the contacts' do) blew up structures too deep for the sweeps to reach across
+// (a 1,000-link chain, a 100 x 100 net): where the error cannot be closed in a step, each
+// sweep added k C to the multipliers and grew the stiffness, and both, carried to the next
+// step, pulled harder than the load (docs/joints.md).
+bool sweep_is_last = false;
+bool sweep_holds = false;
+
+void sweep_set(uint bits)
+{
+    sweep_is_last = (bits & TB_BLOCK_SWEEP_LAST) != 0u;
+    sweep_holds = (bits & TB_BLOCK_SWEEP_HOLDS) != 0u;
+}
 
 struct newton {
     mat3 A, B, D;   // Hessian blocks: position-position, position-rotation, rotation-rotation
@@ -199,6 +217,7 @@ item item_of(uvec2 entry)
 void add_joint(inout newton e, uint j, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
 {
     joint_work w = joint_work_primal(is_b);
+    w.hold_start = sweep_holds;
     tb_gpu_joint_state s = joint_states[j];
     joint_rows(w, j, s, dpa, va, dpb, vb);
     e.A += w.A;
@@ -238,7 +257,7 @@ void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
     if (item_is_joint(it.entry)) {
         bool is_b = block_is_b(it.entry);
         joint_dual(it.p, is_b ? it.dp : my_dp, is_b ? it.v : my_v, is_b ? my_dp : it.dp,
-                   is_b ? my_v : it.v, last);
+                   is_b ? my_v : it.v, last, sweep_holds);
         return;
     }
 #endif
@@ -280,9 +299,6 @@ void move_body(newton e, uint i, tb_gpu_solver_body me, uint lane, out vec3 my_d
     my_v = rotation_vector(my_dq);
 }
 
-// Whether this is the step's last sweep: each main sets it (push.args.y, or the fused
-// solve's count of its sweeps).
-bool sweep_is_last = false;
 
 // Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
 // (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
@@ -377,7 +393,7 @@ void solve_tail()
 void main()
 {
     if (step_aborted()) return;
-    sweep_is_last = push.args.y != 0u;
+    sweep_set(push.args.y);
     solve_tail();
 }
 #elif defined(TB_BLOCK_FUSED)
@@ -397,8 +413,9 @@ void main()
     uint lane = gl_SubgroupInvocationID % BLOCK_LANES;
     uint here = (gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID) / BLOCK_LANES;
     uint at_once = gl_WorkGroupSize.x / BLOCK_LANES;
-    for (uint sweep = 0u; sweep < push.args.y; sweep++) {
-        sweep_is_last = sweep + 1u == push.args.y;
+    uint sweeps = push.args.y & 0xffffu, holds = push.args.y >> TB_BLOCK_FUSED_HOLDS_SHIFT;
+    for (uint sweep = 0u; sweep < sweeps; sweep++) {
+        sweep_set(TB_BLOCK_SWEEP_BITS(sweep, sweeps, holds));
         for (uint c = 0u; c < push.args.x; c++) {
             uint count = counters.colour[c].x, start = counters.colour[c].y;
             for (uint first = 0u; first < count; first += at_once) {
@@ -430,7 +447,7 @@ void solve_tail_narrow()
 void main()
 {
     if (step_aborted()) return;
-    sweep_is_last = push.args.y != 0u;
+    sweep_set(push.args.y);
     uint colour = push.args.x;
     if (colour >= TB_MAX_COLOURS) {
         solve_tail_narrow();

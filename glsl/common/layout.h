@@ -227,6 +227,10 @@ TB_STRUCT(tb_gpu_params) {
                                of body pairs whose joints keep them from colliding (a power of
                                two; 0: no such joint), zw that table's address (uvec2[]: the
                                two body slots + 1, lower first; (0, 0) an empty entry) */
+    TB_VEC4 block_joints;   /* the block solver's joints (tb_block_settings): x their largest
+                               stiffness (in units of their bodies' effective mass, or moment,
+                               / dt^2), y the share of last step's multipliers a joint starts
+                               from, z the share of its stiffness, w reserved */
 };
 #define TB_PARAMS_BODY_DISPATCH_OFFSET 48 /* byte offset of body_dispatch */
 
@@ -347,6 +351,10 @@ TB_STRUCT(tb_gpu_joint_state) {
                                  broken, z a bit for each limit engaged (it pushed last step
                                  or in this one: bit 0 the limit of axial.x, 1 a cone's swing;
                                  6-dof: bit i axis i), w unused */
+    TB_VEC4 start_error[2];   /* the values of the joint's hard equality rows where the step
+                                 began (block/joint_start), in the order joint_rows takes them:
+                                 the step's first sweeps hold each row at this value
+                                 (block/joint.glsl, joint_hold) */
 };
 
 /* A body as the contact solver sees it, in one 96-byte record so a constraint touches three
@@ -367,6 +375,17 @@ TB_STRUCT(tb_gpu_solver_body) {
 #define TB_BLOCK_JOINT          TB_U(0x40000000)   /* a joint's entry: its slot | this | side */
 #define TB_BLOCK_NO_COLOUR      TB_U(0xffffffff)
 #define TB_BLOCK_NOT_SOLVED     TB_U(0xfffffffe)   /* not dynamic: never coloured nor solved */
+
+/* The block solver's sweeps (tb_gpu_push.args.y of block/solve and its variants): bits of what
+ * the sweep is. In block/solve_fused args.y holds the sweeps (low 16 bits) and how many of
+ * them hold the joints (the high 16). */
+#define TB_BLOCK_SWEEP_LAST  TB_U(1) /* the step's last sweep */
+#define TB_BLOCK_SWEEP_HOLDS TB_U(2) /* a joint's hard rows hold the error the step began with */
+#define TB_BLOCK_FUSED_HOLDS_SHIFT 16
+/* The bits of sweep `sweep` of `sweeps`, the first `holds` of them holding the joints. */
+#define TB_BLOCK_SWEEP_BITS(sweep, sweeps, holds)                                             \
+    (((sweep) + 1u == (sweeps) ? TB_BLOCK_SWEEP_LAST : 0u) |                                  \
+     ((sweep) < (holds) ? TB_BLOCK_SWEEP_HOLDS : 0u))
 
 /* Solver sweeps (tb_gpu_push.args.z of solver/solve): what a sweep over the colours does. */
 #define TB_SOLVE_BIAS           TB_U(0) /* solve with the soft push-out of penetration */

@@ -9,11 +9,15 @@
 
 tb_block_settings tb_block_default_settings(void)
 {
-    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 1.0f, 1.2f };
+    tb_block_settings s = { 30, 1.0f, 300.0f, 1000.0f, 0.95f, 0.97f, 0.99f, 1.0f, 1.2f,
+                            1000.0f, 0.475f, 0.9f, 15 };
     const char* env = getenv("TUMBLE_BLOCK");
     if (env) sscanf(env, "%u,%f,%f,%f,%f,%f,%f,%f,%f", &s.iterations, &s.stiffness, &s.growth,
                     &s.max_stiffness, &s.warm_share, &s.stabilisation, &s.stiffness_carry,
                     &s.anchored_friction, &s.over_relaxation);
+    const char* joints = getenv("TUMBLE_BLOCK_JOINTS");
+    if (joints) sscanf(joints, "%f,%f,%f,%u", &s.joint_max_stiffness, &s.joint_warm_share,
+                       &s.joint_stiffness_carry, &s.joint_holds);
     return s;
 }
 
@@ -259,16 +263,23 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
     return r;
 }
 
+uint32_t tb_block_joint_holds(const tb_block_settings* settings)
+{
+    uint32_t half = settings->iterations / 2;
+    return settings->joint_holds < half ? settings->joint_holds : half;
+}
+
 /* The step's sweeps: all in one dispatch of the fused solve, or a dispatch a colour and
  * sweep (the tail's own pass where the world has one). */
 static tb_result record_sweeps(const tb_block_solver* s, tb_pass_list* list, VkBuffer counters,
                                uint32_t colours, uint32_t lanes, uint32_t iterations,
-                               uint32_t relax, uint32_t joint_capacity, int fused)
+                               uint32_t holds, uint32_t relax, uint32_t joint_capacity,
+                               int fused)
 {
     if (fused) {
+        uint32_t sweeps = iterations | holds << TB_BLOCK_FUSED_HOLDS_SHIFT;
         tb_pass all = tb_pass_with_args(joint_capacity ? s->solve_fused_joints : s->solve_fused,
-                                        TB_DISPATCH_FIXED, counters, 0, colours, iterations,
-                                        relax);
+                                        TB_DISPATCH_FIXED, counters, 0, colours, sweeps, relax);
         all.writes_no_arguments = 1;
         return tb_pass_list_add(list, s->pipelines->gpu->diag, &all);
     }
@@ -280,7 +291,8 @@ static tb_result record_sweeps(const tb_block_solver* s, tb_pass_list* list, VkB
     }
     tb_result r = TB_OK;
     for (uint32_t it = 0; it < iterations && !r; it++)
-        r = over_colours(s, list, counters, sweep, tail, colours, it + 1 == iterations, relax);
+        r = over_colours(s, list, counters, sweep, tail, colours,
+                         TB_BLOCK_SWEEP_BITS(it, iterations, holds), relax);
     return r;
 }
 
@@ -294,8 +306,9 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
-    if (!r) r = record_sweeps(s, list, counters, colours, lanes, settings->iterations, relax,
-                              joint_capacity, fused);
+    uint32_t holds = joint_capacity ? tb_block_joint_holds(settings) : 0;
+    if (!r) r = record_sweeps(s, list, counters, colours, lanes, settings->iterations, holds,
+                              relax, joint_capacity, fused);
     if (!r) r = per_body(s, list, s->end, counters, 0);
     if (!r && restitution)
         r = over_colours(s, list, counters, s->bounce, s->bounce, colours, 0, 0);

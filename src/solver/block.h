@@ -68,10 +68,17 @@ typedef struct tb_block_settings {
                              ///< docs/performance.md, "Why the pile creeps"); between: that
                              ///< share of the slip, the multiplier from the rest
     float over_relaxation;   ///< how far a body moves along its Newton step in a sweep
+    float joint_max_stiffness;   ///< the most a joint's rows stiffen to, in their unit
+    float joint_warm_share;      ///< the share of last step's multipliers a joint starts from
+    float joint_stiffness_carry; ///< and of its stiffness
+    uint32_t joint_holds;        ///< the first sweeps (at most half), in a world with joints,
+                                 ///< in which a joint's hard rows hold the error its step
+                                 ///< began with (glsl/block/solve.glsl, sweep_set)
 } tb_block_settings;
 
 /// The defaults (TUMBLE_BLOCK="iterations,stiffness,growth,max,warm,stabilisation,carry,
-/// anchored,over-relaxation" overrides them while the solver is being tuned).
+/// anchored,over-relaxation" and TUMBLE_BLOCK_JOINTS="max,warm,carry,holds"
+/// override them while the solver is being tuned).
 tb_block_settings tb_block_default_settings(void);
 
 tb_result tb_block_init(tb_block_solver* s, tb_pipelines* pipelines);
@@ -80,6 +87,9 @@ void tb_block_destroy(tb_block_solver* s);
 /// Colouring rounds recorded for `colours` colours: more rounds than colours, as a round
 /// colours only the bodies that beat their uncoloured neighbours.
 uint32_t tb_block_colouring_rounds(uint32_t colours);
+
+/// The sweeps, the first of a step, in which a world with joints holds their starting error.
+uint32_t tb_block_joint_holds(const tb_block_settings* settings);
 
 /// Make the sweep with `lanes` lanes a body, and the 8-lane one the first time (each is made
 /// on first use, as the step is recorded).

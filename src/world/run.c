@@ -40,6 +40,8 @@ static void write_params(tb_world* w, float dt)
     p->block = (tb_gpu_vec4){ b->stiffness, b->growth, b->max_stiffness, b->warm_share };
     p->block_more = (tb_gpu_vec4){ b->stabilisation, b->anchored_friction, (float)w->substeps,
                                    b->stiffness_carry };
+    p->block_joints = (tb_gpu_vec4){ b->joint_max_stiffness, b->joint_warm_share,
+                                     b->joint_stiffness_carry, 0 };
     const tb_buffer* pair = w->sim.pair;
     /* The manifold array of the next step's parity, then the other (last step's); after
      * each step of the submission the GPU swaps the two (tb_tail_swap). */
