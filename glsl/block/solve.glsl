@@ -34,8 +34,8 @@
 layout(push_constant) uniform Push { tb_gpu_push push; };
 
 // What this sweep is (TB_BLOCK_SWEEP_*): each main sets it from push.args.y, the fused solve
-// from its count of the sweeps. In a world with joints the step's first sweeps (half of
-// them, tb_block_settings.joint_holds) hold each joint's hard rows at the error the step
+// from its count of the sweeps. In a world with joints the step's first sweeps (15, at most
+// half of them: tb_block_joint_holds) hold each joint's hard rows at the error the step
 // began with (joint_hold): the bodies find the motion that keeps the joints as they were,
 // and the multipliers the load, before the later sweeps close the error. Sweeps that all
 // close it (as the contacts' do) blew up structures too deep for the sweeps to reach across
@@ -298,7 +298,6 @@ void move_body(newton e, uint i, tb_gpu_solver_body me, uint lane, out vec3 my_d
     }
     my_v = rotation_vector(my_dq);
 }
-
 
 // Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
 // (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
