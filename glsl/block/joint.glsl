@@ -194,10 +194,13 @@ void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, 
     joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
 }
 
+// The hard equality rows a joint's start_error holds (two vec4s; a kind has at most seven).
+const uint JOINT_START_ROWS = 8u;
+
 // The error hard equality row n of joint j began the step with (tb_gpu_joint_state.start_error).
 float joint_start_error(uint j, uint n)
 {
-    return n < 8u ? joint_states[j].start_error[n >> 2][n & 3u] : 0.0;
+    return n < JOINT_START_ROWS ? joint_states[j].start_error[n >> 2][n & 3u] : 0.0;
 }
 
 // An equality row: hard (its multiplier and stiffness), or in a soft joint a spring to 0.
@@ -208,7 +211,7 @@ void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float
 {
     uint n = w.holds++;
     if (w.record) {
-        if (n < 8u) joint_states[w.joint].start_error[n >> 2][n & 3u] = r.C;
+        if (n < JOINT_START_ROWS) joint_states[w.joint].start_error[n >> 2][n & 3u] = r.C;
         return;
     }
     if (w.soft_hertz > 0.0) {
@@ -558,13 +561,12 @@ joint_work joint_work_primal(bool is_b)
 }
 
 // Joint j's hard equality rows' values with its bodies where the step begins, kept as the
-// error the step's first sweeps hold (block/joint_start).
+// error the step's first sweeps hold (block/joint_start). Every row the sweeps read is
+// written here each step, in the same order, so the rest of start_error is left as it is.
 void joint_record_start(uint j, tb_gpu_joint_state s)
 {
     joint_work w = joint_work_primal(false);
     w.record = true;
-    joint_states[j].start_error[0] = vec4(0.0);
-    joint_states[j].start_error[1] = vec4(0.0);
     joint_rows(w, j, s, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
 }
 

@@ -35,7 +35,7 @@ layout(push_constant) uniform Push { tb_gpu_push push; };
 
 // What this sweep is (TB_BLOCK_SWEEP_*): each main sets it from push.args.y, the fused solve
 // from its count of the sweeps. In a world with joints the step's first sweeps (15, at most
-// half of them: tb_block_joint_holds) hold each joint's hard rows at the error the step
+// half of them: src/solver/block.c) hold each joint's hard rows at the error the step
 // began with (joint_hold): the bodies find the motion that keeps the joints as they were,
 // and the multipliers the load, before the later sweeps close the error. Sweeps that all
 // close it (as the contacts' do) blew up structures too deep for the sweeps to reach across

@@ -263,7 +263,9 @@ static tb_result over_colours(const tb_block_solver* s, tb_pass_list* list, VkBu
     return r;
 }
 
-uint32_t tb_block_joint_holds(const tb_block_settings* settings)
+/* The sweeps, the first of a step, in which a world with joints holds their starting
+ * error: joint_holds, at most half of them. */
+static uint32_t joint_holds(const tb_block_settings* settings)
 {
     uint32_t half = settings->iterations / 2;
     return settings->joint_holds < half ? settings->joint_holds : half;
@@ -306,7 +308,7 @@ tb_result tb_block_record_solve(const tb_block_solver* s, tb_pass_list* list, Vk
     tb_result r = per_pair(s, list, s->start, counters);
     if (!r && joint_capacity) r = per_joint(s, list, s->joint_start, joint_capacity);
     if (!r) r = per_body(s, list, s->guess, counters, 0);
-    uint32_t holds = joint_capacity ? tb_block_joint_holds(settings) : 0;
+    uint32_t holds = joint_capacity ? joint_holds(settings) : 0;
     if (!r) r = record_sweeps(s, list, counters, colours, lanes, settings->iterations, holds,
                               relax, joint_capacity, fused);
     if (!r) r = per_body(s, list, s->end, counters, 0);

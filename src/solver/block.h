@@ -88,9 +88,6 @@ void tb_block_destroy(tb_block_solver* s);
 /// colours only the bodies that beat their uncoloured neighbours.
 uint32_t tb_block_colouring_rounds(uint32_t colours);
 
-/// The sweeps, the first of a step, in which a world with joints holds their starting error.
-uint32_t tb_block_joint_holds(const tb_block_settings* settings);
-
 /// Make the sweep with `lanes` lanes a body, and the 8-lane one the first time (each is made
 /// on first use, as the step is recorded).
 tb_result tb_block_prepare_lanes(tb_block_solver* s, uint32_t lanes);
