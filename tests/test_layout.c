@@ -133,7 +133,8 @@ static void test_contact_layout(void** state)
     assert_int_equal(offsetof(tb_gpu_counters, colour_dispatch), TB_COUNTERS_COLOUR_DISPATCH_OFFSET);
     assert_int_equal(sizeof(tb_gpu_counters) % 16, 0);
     assert_int_equal(sizeof(tb_gpu_manifold), 16 * (4 + 2 * TB_MAX_MANIFOLD_POINTS) +
-                                               8 * TB_MAX_MANIFOLD_POINTS);
+                                               8 * TB_MAX_MANIFOLD_POINTS +
+                                               16 * (3 + 2 * TB_MAX_MANIFOLD_POINTS));
     assert_int_equal(offsetof(tb_gpu_manifold, point), 32);
     assert_int_equal(offsetof(tb_gpu_manifold, impulse), 32 + 16 * TB_MAX_MANIFOLD_POINTS);
     assert_int_equal(sizeof(tb_gpu_constraint), 32 + 48 * TB_MAX_MANIFOLD_POINTS);

@@ -4,7 +4,8 @@
  * its side two); a cylinder rolling down an incline at (2/3) g sin(angle); pairs among
  * themselves and with spheres; a sphere or capsule against a capsule in closed form;
  * compounds with round children; the other shapes' contacts the same with round shapes in
- * the world as without. */
+ * the world as without; contacts measured again (contact reuse) as the narrowphase finds
+ * them, and reuse's bounds refused when bad. */
 #include "harness.h"
 
 #include <math.h>
@@ -596,6 +597,128 @@ static void test_bad_round_shapes_refused(void** state)
     th_world_destroy(w);
 }
 
+/* ---- contact reuse (tb_world_set_contact_reuse) -------------------------------------- */
+
+#define REUSE_CAPACITY 512
+
+static uint32_t read_all_contacts(tb_world* w, tb_contact* out)
+{
+    uint32_t count = 0;
+    th_assert_ok(tb_world_read_contacts(w, out, REUSE_CAPACITY, &count));
+    assert_true(count <= REUSE_CAPACITY);
+    return count;
+}
+
+/* What a pair's contacts in `list` come to (a pile's manifolds may pick other points of
+ * the same features from step to step: four of a cap's eight corners, the other face of two
+ * parallel ones): how many, their centroid, their deepest separation and the normal. */
+typedef struct pair_summary {
+    uint32_t count;
+    tb_vec3 centroid, normal;
+    double deepest;
+} pair_summary;
+
+static pair_summary summarise(const tb_contact* c, const tb_contact* list, uint32_t n)
+{
+    pair_summary s = { 0, { 0, 0, 0 }, { 0, 0, 0 }, 1e9 };
+    for (uint32_t i = 0; i < n; i++) {
+        if (list[i].a.index1 != c->a.index1 || list[i].b.index1 != c->b.index1) continue;
+        s.count++;
+        s.centroid.x += list[i].point.x, s.centroid.y += list[i].point.y;
+        s.centroid.z += list[i].point.z;
+        s.normal = list[i].normal;
+        s.deepest = fmin(s.deepest, list[i].separation);
+    }
+    if (s.count) s.centroid.x /= s.count, s.centroid.y /= s.count, s.centroid.z /= s.count;
+    return s;
+}
+
+/* A settled heap of capsules, cylinders and cones on a plane and a box, stepped once from
+ * its snapshot with reuse (the default) and once without: each pair's contacts measured
+ * again are as many as those found anew, within what the bounds allow of them (centroid
+ * 5 mm, deepest separation 1 mm, normal 1.5 degrees), and not all to the bit (so they were
+ * measured again). */
+static void test_contact_reuse_matches_narrowphase(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create(NULL);
+    make_ground(w, ON_PLANE);
+    tb_body_def ledge = th_static_def(th_box(w, th_v3(1.0f, 0.25f, 1.0f)), th_v3(1.5f, 0.25f, 0));
+    th_body(w, &ledge);
+    tb_shape_type kinds[3] = { TB_SHAPE_CAPSULE, TB_SHAPE_CYLINDER, TB_SHAPE_CONE };
+    for (int i = 0; i < 18; i++) {
+        tb_shape_id s = make_round(w, kinds[i % 3], 0.2f, 0.3f);
+        tb_body_def d = th_dynamic_def(s, th_v3(0.55f * (i % 6) - 0.4f, 0.8f + 0.7f * (i / 6),
+                                                 0.3f * ((i * 7) % 3) - 0.3f));
+        float angle = 0.4f * (float)i;
+        d.rotation = (tb_quat){ sinf(angle) * 0.6f, 0, cosf(angle) * 0.8f, 1.0f };
+        float norm = sqrtf(d.rotation.x * d.rotation.x + d.rotation.z * d.rotation.z + 1.0f);
+        d.rotation.x /= norm, d.rotation.z /= norm, d.rotation.w /= norm;
+        th_body(w, &d);
+    }
+    step(w, 300);
+    size_t size = 0;
+    th_assert_ok(tb_world_snapshot(w, NULL, 0, &size));
+    void* bytes = malloc(size);
+    assert_non_null(bytes);
+    th_assert_ok(tb_world_snapshot(w, bytes, size, &size));
+    static tb_contact reused[REUSE_CAPACITY], fresh[REUSE_CAPACITY];
+    step(w, 1);
+    uint32_t n_reused = read_all_contacts(w, reused);
+    th_assert_ok(tb_world_restore(w, bytes, size));
+    th_assert_ok(tb_world_set_contact_reuse(w, 0, 0));
+    step(w, 1);
+    uint32_t n_fresh = read_all_contacts(w, fresh);
+    free(bytes);
+    uint32_t pairs = 0, differ = 0;
+    double worst_centroid = 0, worst_separation = 0, worst_normal = 1;
+    for (uint32_t i = 0; i < n_fresh; i++) {
+        if (i > 0 && fresh[i].a.index1 == fresh[i - 1].a.index1 &&
+            fresh[i].b.index1 == fresh[i - 1].b.index1)
+            continue;   /* grouped by pair: its first contact stands for it */
+        pair_summary f = summarise(&fresh[i], fresh, n_fresh);
+        pair_summary r = summarise(&fresh[i], reused, n_reused);
+        pairs++;
+        assert_int_equal(r.count, f.count);
+        double dn = r.normal.x * f.normal.x + r.normal.y * f.normal.y + r.normal.z * f.normal.z;
+        worst_centroid = fmax(worst_centroid, dist3(r.centroid, f.centroid));
+        worst_separation = fmax(worst_separation, fabs(r.deepest - f.deepest));
+        worst_normal = fmin(worst_normal, dn);
+    }
+    for (uint32_t i = 0; i < n_fresh && i < n_reused; i++)
+        differ += memcmp(&fresh[i], &reused[i], sizeof fresh[i]) != 0;
+    printf("reuse: %u contacts in %u pairs (%u not to the bit); worst centroid %.3f mm, "
+           "deepest separation %.4f mm, normal %.3f deg\n", n_fresh, pairs, differ,
+           1e3 * worst_centroid, 1e3 * worst_separation,
+           acos(fmin(1.0, worst_normal)) * 180 / M_PI);
+    assert_true(n_fresh >= 20 && n_reused == n_fresh);
+    assert_true(differ > 0);
+    assert_true(worst_centroid < 5e-3);
+    assert_true(worst_separation < 1e-3);
+    assert_true(worst_normal > cos(1.5 * M_PI / 180));
+    th_world_destroy(w);
+}
+
+/* Bad bounds are refused and change nothing; get reads back what was set. */
+static void test_contact_reuse_settings(void** state)
+{
+    (void)state;
+    tb_world* w = th_world_create_ex(NULL, 1);
+    float d = 0, a = 0;
+    tb_world_get_contact_reuse(w, &d, &a);
+    assert_true(d == TB_DEFAULT_REUSE_DISTANCE && a == TB_DEFAULT_REUSE_ANGLE);
+    th_assert_ok(tb_world_set_contact_reuse(w, 0.002f, 0.01f));
+    const float bad[][2] = { { -0.001f, 0.01f }, { NAN, 0.01f }, { 0.001f, INFINITY },
+                             { 0.001f, -0.1f }, { 0.001f, 1.0f } };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++)
+        th_assert_result(tb_world_set_contact_reuse(w, bad[i][0], bad[i][1]),
+                         TB_ERROR_INVALID_ARGUMENT);
+    tb_world_get_contact_reuse(w, &d, &a);
+    assert_true(d == 0.002f && a == 0.01f);
+    th_assert_result(tb_world_set_contact_reuse(NULL, 0, 0), TB_ERROR_INVALID_ARGUMENT);
+    th_world_destroy(w);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -610,6 +733,8 @@ int main(void)
         cmocka_unit_test(test_compound_with_round_children),
         cmocka_unit_test(test_capsule_pairs_closed_form),
         cmocka_unit_test(test_other_pairs_same_with_round_shapes),
+        cmocka_unit_test(test_contact_reuse_matches_narrowphase),
+        cmocka_unit_test(test_contact_reuse_settings),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -199,12 +199,15 @@ TB_STRUCT(tb_gpu_params) {
     TB_UVEC4 counts;        /* x body slots in use (high-water mark), y shape count, z solver
                                substeps, w bodies created and destroyed since the world began
                                (a change says the set of bodies changed) */
-    TB_VEC4 limits;         /* x largest rotation per step (rad), y z w reserved */
+    TB_VEC4 limits;         /* x largest rotation per step (rad), y cos of half the turn a
+                               pair may make and keep its manifold (tb_world_set_contact_reuse),
+                               z w reserved */
     TB_UVEC4 body_dispatch; /* xyz: VkDispatchIndirectCommand covering counts.x bodies; w reserved */
     TB_UVEC4 capacity;      /* x pair capacity (one half), y grid table mask (size - 1),
                                z colouring rounds recorded, w solver iterations */
     TB_VEC4 contact;        /* x contact margin (m), y restitution threshold (m/s),
-                               z fastest push-out speed (m/s), w reserved */
+                               z fastest push-out speed (m/s), w how far a pair may move
+                               and keep its manifold (m; below 0: never) */
     TB_VEC4 soft;           /* soft contact of one substep: x bias rate (1/s), y mass scale,
                                z impulse scale, w substep h (s) */
     TB_VEC4 soft_static;    /* the same against a static body: twice as stiff */
@@ -641,6 +644,16 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_VEC4 slip[TB_MAX_MANIFOLD_POINTS / 2]; /* the block solver's static friction: how far
                                  point k's two surfaces have moved apart along the tangents
                                  since it began to stick (m), in slip[k / 2].xy (k even) or .zw */
+    /* The manifold as it was measured, so that a later step whose pair has hardly moved
+     * since measures these points again instead of running the narrowphase
+     * (glsl/narrowphase/reuse.glsl). Point k on a's surface is anchor_a[k].xyz (in a's
+     * frame) moved anchor_a[k].w along the normal, on b's anchor_b[k] against it: */
+    TB_VEC4 anchor_a[TB_MAX_MANIFOLD_POINTS];
+    TB_VEC4 anchor_b[TB_MAX_MANIFOLD_POINTS];
+    TB_VEC4 measured_normal;  /* xyz the normal in the frame of the body w names (reuse.glsl;
+                                 w 0: the manifold is not to be measured again) */
+    TB_VEC4 measured_turn;    /* b's rotation in a's frame (unit quaternion) */
+    TB_VEC4 measured_offset;  /* xyz b's centre in a's frame; w unused */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are

@@ -4,7 +4,9 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 // The first pass of the narrowphase while round shapes live: every pair's kind (pair.glsl's
 // np_pair_kind). The round pairs surely apart get their empty manifold here
-// (np_round_apart: bounding balls, the capsules' closed form, GJK's first support). The
+// (np_round_apart: bounding balls, the capsules' closed form, GJK's first support), and
+// those whose bodies have hardly moved since their manifold was measured get it measured
+// again (reuse.glsl). The
 // kind of each pair left for round_points (with the bucket of the supports its GJK took
 // last step) or contacts.comp (TB_ROUND_KINDS for none: a mesh triangle's pair, or apart)
 // goes to colour_work's second list, free until the solver, and is counted in
@@ -31,17 +33,16 @@
 #include "epa.glsl"
 #include "round.glsl"
 #include "round_kinds.glsl"
+#include "reuse.glsl"
 
 // The bucket of the GJK supports pair q (p) took last step (round_points keeps them in its
 // manifold's axis.y; they change for about one pair in ten from step to step): up to 3,
 // each of 4 to 8 (a pair new or without GJK last step as 6), 9 and 10, more. Grouped by it
 // too, a warp's GJK loops run about as long (with four buckets, up to 4, 5-6, 7-8 and more,
-// round_points took 4 % longer on an H200). Last step's manifold is found here, and where
-// it is left for round_points (this step's manifold's axis.x) so that it does not look
-// again.
-uint supports_bucket(np_pair q, uint p)
+// round_points took 4 % longer on an H200). Last step's manifold, found by round_kind, is
+// left for round_points (this step's manifold's axis.x) so that it does not look again.
+uint supports_bucket(uint p, uint prev)
 {
-    uint prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
     manifolds[p].axis.x = prev;
     uint supports = prev != NP_NONE ? prev_manifolds[prev].axis.y : 0u;
     if (supports == 0u) supports = 6u;
@@ -49,15 +50,28 @@ uint supports_bucket(np_pair q, uint p)
 }
 
 // Round pair p of `kind` (its first bucket) with its bucket, or TB_ROUND_KINDS when it is
-// apart: then its empty manifold is written.
-uint round_kind(uint p, uint kind)
+// apart or its manifold was measured again (reuse.glsl): then its manifold is written here,
+// and `points` counts them.
+uint round_kind(uint p, uint kind, inout uint points)
 {
-    // Last step's manifold is not looked for before the cull: a manifold without points
-    // takes nothing from it (its stiffness carry-over, axis.w, is read for points only and
-    // zeroed by the block solver's start, block/start.comp), and the search is a loop over
-    // last step's pairs.
+    // Last step's manifold is looked for only where the bounding balls meet: the search is
+    // a loop over last step's pairs, and a manifold without points takes nothing from it
+    // (its stiffness carry-over, axis.w, is read for points only and zeroed by the block
+    // solver's start, block/start.comp). A pair still posed as when its manifold was
+    // measured touches as it did then: measured again before GJK's supports of the cull.
     np_pair q = np_pair_bodies(p);
-    if (!np_round_apart(q.first, q.second, q.margin)) return kind + supports_bucket(q, p);
+    uint first = q.first.type;
+    bool unbounded = first == TB_GPU_SHAPE_PLANE || first == TB_GPU_SHAPE_MESH ||
+                     first == TB_GPU_SHAPE_HEIGHTFIELD;   // never culled (np_round_apart)
+    if (unbounded || np_balls_near(q.first, q.second, q.margin)) {
+        uint prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
+        if (np_may_remeasure(q, prev)) {
+            points = np_remeasure(q, p, prev);
+            return TB_ROUND_KINDS;
+        }
+        if (!np_round_apart(q.first, q.second, q.margin))
+            return kind + supports_bucket(p, prev);
+    }
     // As round_points with no points.
     np_pair_start(q);
     np_pair_finish(q, 0u, vec3(0.0, 1.0, 0.0));
@@ -70,7 +84,9 @@ void main()
     uint p = pair_thread_index();
     bool live = !step_aborted() && p < counters.state.z;
     uint kind = live ? np_pair_kind(p) : TB_ROUND_KINDS;
-    if (kind < TB_PAIR_KIND_HULL) kind = round_kind(p, kind);
+    uint points = 0u;
+    if (kind < TB_PAIR_KIND_HULL) kind = round_kind(p, kind, points);
+    np_count_points(points);
     if (live) colour_work[params.capacity.x + p] = kind;
     // The pairs left of each kind, counted for round_order.
     np_kind_add(kind);

@@ -27,6 +27,7 @@
 #include "gjk.glsl"
 #include "epa.glsl"
 #include "round.glsl"
+#include "reuse.glsl"
 
 uint round_points(uint p)
 {
@@ -42,6 +43,7 @@ uint round_points(uint p)
     uint count = np_round_contacts(q.t, q.first, q.second, on_mesh, tri, q.margin, normal);
     np_pair_finish(q, count, normal);
     manifolds[q.t.slot].axis.y = np_round_supports;
+    np_keep_measured(q.a, q.b, q.sub, q.t.slot, count);
     return count;
 }
 

@@ -137,6 +137,25 @@ tb_result tb_world_set_solver(tb_world* w, tb_solver_kind solver, uint32_t itera
     return tb_world_use_solver(w, solver == TB_SOLVER_BLOCK, iterations);
 }
 
+tb_result tb_world_set_contact_reuse(tb_world* w, float distance, float angle)
+{
+    if (!w) return TB_ERROR_INVALID_ARGUMENT;
+    if (!isfinite(distance) || distance < 0 || !isfinite(angle) || angle < 0 ||
+        angle > TB_MAX_REUSE_ANGLE)
+        return tb_fail(&w->diag, TB_ERROR_INVALID_ARGUMENT, "contact reuse needs a finite "
+                       "distance >= 0 and an angle in [0, %g] rad, not %g m and %g rad",
+                       (double)TB_MAX_REUSE_ANGLE, (double)distance, (double)angle);
+    w->reuse_distance = distance;
+    w->reuse_angle = angle;
+    return TB_OK;
+}
+
+void tb_world_get_contact_reuse(const tb_world* w, float* distance, float* angle)
+{
+    if (distance) *distance = w ? w->reuse_distance : TB_DEFAULT_REUSE_DISTANCE;
+    if (angle) *angle = w ? w->reuse_angle : TB_DEFAULT_REUSE_ANGLE;
+}
+
 tb_solver_kind tb_world_get_solver(const tb_world* w, uint32_t* iterations)
 {
     if (iterations) *iterations = w ? w->block_settings.iterations : 0;

@@ -1,5 +1,6 @@
 /* Running steps: this submission's uploads, the submission, and after it the growth of
  * whatever overflowed, after which the step is run again from its unchanged inputs. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -27,12 +28,14 @@ static void write_params(tb_world* w, float dt)
     p->gravity = (tb_gpu_vec4){ w->gravity.x, w->gravity.y, w->gravity.z, dt };
     uint32_t substeps = tb_world_substeps(w);
     p->counts = (tb_gpu_uvec4){ slots, w->shape_slots.used, substeps, w->body_set_version };
-    p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, 0, 0, 0 };
+    /* Reuse is off when either bound is 0 (a distance below 0 never passes). */
+    int reuse = w->reuse_distance > 0 && w->reuse_angle > 0;
+    p->limits = (tb_gpu_vec4){ w->max_rotation_per_step, cosf(0.5f * w->reuse_angle), 0, 0 };
     p->body_dispatch = (tb_gpu_uvec4){ x, x ? (groups + x - 1) / x : 1, 1, 0 };
     p->capacity = (tb_gpu_uvec4){ w->sim.pair_capacity, w->sim.table_size - 1, w->colour_rounds,
                                   w->solver_iterations };
     p->contact = (tb_gpu_vec4){ w->contact_margin, w->restitution_threshold,
-                                w->contact_push_speed, 0 };
+                                w->contact_push_speed, reuse ? w->reuse_distance : -1.0f };
     tb_solver_contact contact = { w->contact_hertz, w->contact_damping_ratio };
     p->soft = tb_solver_softness(&contact, dt / (float)substeps, 1.0);
     p->soft_static = tb_solver_softness(&contact, dt / (float)substeps, 2.0);

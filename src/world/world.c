@@ -85,6 +85,8 @@ tb_result tb_world_build(const tb_world_def* def, tb_broadphase broadphase, tb_d
     w->substeps = def->substeps;
     w->solver_iterations = def->solver_iterations;
     w->contact_margin = def->contact_margin;
+    w->reuse_distance = TB_DEFAULT_REUSE_DISTANCE;
+    w->reuse_angle = TB_DEFAULT_REUSE_ANGLE;
     w->restitution_threshold = def->restitution_threshold;
     w->contact_hertz = def->contact_hertz;
     w->contact_damping_ratio = def->contact_damping_ratio;

@@ -108,6 +108,7 @@ struct tb_world {
     uint32_t steps_per_submit;   ///< tb_world_step_n's batches (run.c; TUMBLE_STEPS_PER_SUBMIT)
     uint32_t substeps, solver_iterations;
     float contact_margin, restitution_threshold;
+    float reuse_distance, reuse_angle;   ///< tb_world_set_contact_reuse
     float contact_hertz, contact_damping_ratio, contact_push_speed;
     uint64_t gpu_steps;          ///< steps the GPU completed (its counters.state.y)
     uint64_t steps_redone;       ///< steps run again after a buffer grew

@@ -40,6 +40,7 @@ typedef struct options {
     const char* plugin;   /* NULL: none; else a plugin loaded before the scene is built */
     uint32_t substeps, iterations; /* 0: the world's defaults */
     float hertz, damping;          /* < 0: the world's defaults */
+    float reuse, reuse_angle;      /* < 0: the world's contact reuse bounds (m, rad) */
 } options;
 
 /* Pictures of the timed steps. Rendering happens between steps, outside the timings. */
@@ -75,7 +76,8 @@ static void print_usage(FILE* f)
             "usage: bench --scene NAME [--n N] [--steps S] [--warmup W] [--seed K]\n"
             "             [--device D] [--broadphase B] [--plugin FILE] [--csv FILE] [--json-only]\n"
             "             [--frames DIR [--every K] [--contacts]]\n"
-            "             [--substeps S] [--iterations I] [--hertz H] [--damping Z] [--help]\n"
+            "             [--substeps S] [--iterations I] [--hertz H] [--damping Z]\n"
+            "             [--reuse D[,A]] [--help]\n"
             "  --n, --steps  0 or absent: the scene's default\n"
             "  --warmup      untimed steps before timing (default 10)\n"
             "  --seed        seed of the scene's jitter (default 1)\n"
@@ -91,7 +93,9 @@ static void print_usage(FILE* f)
             "  --contacts    draw contact points and normals in the frames\n"
             "  --substeps, --iterations, --hertz, --damping\n"
             "                the world's substeps, solver_iterations, contact_hertz and\n"
-            "                contact_damping_ratio (default: tb_default_world_def's)\n");
+            "                contact_damping_ratio (default: tb_default_world_def's)\n"
+            "  --reuse D[,A] tb_world_set_contact_reuse's distance in m and angle in rad (0: no\n"
+            "                reuse; default: the world's, 0.001 and 2 degrees)\n");
     scene_print_list(f);
 }
 
@@ -147,6 +151,9 @@ static int parse_args(int argc, char** argv, options* o)
             ok = scene_parse_u32(v, &o->substeps);
         } else if (strcmp(a, "--iterations") == 0) {
             ok = scene_parse_u32(v, &o->iterations);
+        } else if (strcmp(a, "--reuse") == 0) {
+            int got = sscanf(v, "%f,%f", &o->reuse, &o->reuse_angle);
+            ok = got >= 1 && o->reuse >= 0 && (got == 1 || o->reuse_angle >= 0);
         } else if (strcmp(a, "--hertz") == 0 || strcmp(a, "--damping") == 0) {
             char* end = NULL;
             double x = strtod(v, &end);
@@ -485,6 +492,11 @@ static tb_world* create_world(const options* o)
     tb_world* world = NULL;
     tb_result r = tb_world_create(&def, &world);
     if (r != TB_OK) fail(NULL, "tb_world_create", r);
+    float angle;
+    tb_world_get_contact_reuse(world, NULL, &angle);
+    if (o->reuse_angle >= 0) angle = o->reuse_angle;
+    if (o->reuse >= 0 && (r = tb_world_set_contact_reuse(world, o->reuse, angle)) != TB_OK)
+        fail(world, "tb_world_set_contact_reuse", r);
     return world;
 }
 
@@ -536,7 +548,7 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
 int main(int argc, char** argv)
 {
     options o = { NULL, 0, 0, 10, 1, NULL, TB_BROADPHASE_DEFAULT, NULL, 0, NULL, 1, 0, NULL,
-                  0, 0, -1.0f, -1.0f };
+                  0, 0, -1.0f, -1.0f, -1.0f, -1.0f };
     setvbuf(stdout, NULL, _IOLBF, 0);   /* progress shows line by line, piped too */
     int code = parse_args(argc, argv, &o);
     if (code >= 0) return code;

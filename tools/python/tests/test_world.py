@@ -147,3 +147,21 @@ def test_shader_hot_reload(make_world, tmp_path):
     with pytest.raises(tumble.TumbleError, match="not a readable directory"):
         world.set_shader_dir(tmp_path / "missing")
     world.set_shader_dir(None)
+
+
+def test_contact_reuse_settings(make_world):
+    """The contact reuse bounds read back as set, 0 turns reuse off, and bad bounds are
+    refused with the world unchanged."""
+    world = make_world()
+    distance, angle = world.contact_reuse
+    assert distance == pytest.approx(0.001) and angle == pytest.approx(np.pi / 90)
+    world.contact_reuse = (0.002, 0.01)
+    assert world.contact_reuse == pytest.approx((0.002, 0.01))
+    for bad in [(-1, 0.01), (0.001, float("nan")), (0.001, 1.0)]:
+        with pytest.raises(tumble.TumbleError):
+            world.contact_reuse = bad
+    with pytest.raises(ValueError):
+        world.contact_reuse = (1, 2, 3)
+    assert world.contact_reuse == pytest.approx((0.002, 0.01))
+    world.contact_reuse = (0, 0)
+    assert world.contact_reuse == (0.0, 0.0)

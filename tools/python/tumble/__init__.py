@@ -548,6 +548,25 @@ class World:
         g = _vec3("gravity", value)
         self._check(lib.tb_world_set_gravity(self._handle(), g))
 
+    @property
+    def contact_reuse(self):
+        """(distance m, angle rad): a pair that moved and turned less than these since its
+        contact points were found keeps them, measured again, instead of running the
+        narrowphase (round shapes' pairs; defaults 0.001 and 2 degrees). Assign two numbers
+        to change them; 0 for either turns reuse off. tb_world_set_contact_reuse."""
+        d, a = ffi.new("float*"), ffi.new("float*")
+        lib.tb_world_get_contact_reuse(self._handle(), d, a)
+        return (float(d[0]), float(a[0]))
+
+    @contact_reuse.setter
+    def contact_reuse(self, value):
+        pair = _reals("contact_reuse", value)
+        if pair.shape != (2,):
+            raise ValueError("contact_reuse must be two numbers (distance, angle), got shape %s"
+                             % (pair.shape,))
+        distance, angle = float(pair[0]), float(pair[1])
+        self._check(lib.tb_world_set_contact_reuse(self._handle(), distance, angle))
+
     def set_solver(self, solver, iterations=0):
         """Choose the contact solver before the world's first step: "block" (the default:
         hard contacts, deep piles and tall pyramids stand), with `iterations` sweeps a step
