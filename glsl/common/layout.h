@@ -653,7 +653,7 @@ TB_STRUCT(tb_gpu_manifold) {
     TB_VEC4 measured_normal;  /* xyz the normal in the frame of the body w names (reuse.glsl;
                                  w 0: the manifold is not to be measured again) */
     TB_VEC4 measured_turn;    /* b's rotation in a's frame (unit quaternion) */
-    TB_VEC4 measured_offset;  /* xyz b's centre in a's frame; w unused */
+    TB_VEC4 measured_offset;  /* xyz b's centre in a's frame; w the two shapes' key (bits) */
 };
 
 /* Solver data of one contact point, prepared once per step (solver/prepare). Masses are

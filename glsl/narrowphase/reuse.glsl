@@ -18,6 +18,9 @@
 // with a round body it would tilt as the body rolls. Where both are round at the first point
 // (spheres, capsules side by side) it runs from a's anchor to b's.
 //
+// Only manifolds no deeper than the contact margin are kept: a deeper one is no resting
+// contact, and a wrong normal (EPA's rare slip) would be held as long as the pair stayed.
+//
 // A pair of whole bodies only: a compound child's or a mesh triangle's pair (pairs[].w not
 // 0, or a compound or mesh body) is found again each step.
 #ifndef TB_NP_REUSE_GLSL
@@ -35,6 +38,13 @@ void np_relative_pose(uint a, uint b, out vec4 turn, out vec3 offset)
     vec4 qa = np_quat_conj(body_rot[a]);
     turn = quat_mul(qa, body_rot[b]);
     offset = quat_rotate(qa, body_pos[b].xyz - body_pos[a].xyz);
+}
+
+// The two bodies' shapes, as one key: a body destroyed and another made in its slot with
+// another shape does not take the old one's manifold.
+uint np_shapes_key(uint a, uint b)
+{
+    return body_info[a].x * 0x9e3779b1u ^ body_info[b].x;
 }
 
 // How the kept normal is turned to the bodies' poses now (measured_normal.w; 0: the
@@ -77,12 +87,21 @@ vec4 np_anchor(uint body, vec3 p, vec3 u)
     return vec4(p - u * reach, reach);
 }
 
-// Keeps manifold slot's `count` points, as written, for a later step (np_finish marked it
-// not to be measured again). Only the first `count` anchors are written or read.
+// Keeps manifold slot's `count` points, as written, for a later step, or marks it not to be
+// measured again. Only the first `count` anchors are written or read. Every manifold of a
+// round pair with points passes here or through np_remeasure; one without points is never
+// measured again, whatever its slot held before (np_may_remeasure).
 void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
 {
-    bool keep = count != 0u && np_reusable_pair(a, b, sub);
-    if (!keep) return;
+    bool keep = count != 0u && params.contact.w >= 0.0 && np_reusable_pair(a, b, sub);
+    // Only a resting contact: a manifold deeper than the contact margin is found anew each
+    // step (a step's rare wrong normal, kept, would hold the pair in it).
+    for (uint k = 0u; k < count; k++)
+        keep = keep && manifolds[slot].point[k].w >= -params.contact.x;
+    if (!keep) {
+        manifolds[slot].measured_normal.w = 0.0;
+        return;
+    }
     vec4 qa = np_quat_conj(body_rot[a]), qb = np_quat_conj(body_rot[b]);
     vec3 xa = body_pos[a].xyz, xb = body_pos[b].xyz;
     vec3 n = manifolds[slot].normal.xyz;
@@ -108,14 +127,18 @@ void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
     vec3 offset;
     np_relative_pose(a, b, turn, offset);
     manifolds[slot].measured_turn = turn;
-    manifolds[slot].measured_offset = vec4(offset, 0.0);
+    manifolds[slot].measured_offset = vec4(offset, uintBitsToFloat(np_shapes_key(a, b)));
 }
 
 // Whether last step's manifold prev of pair q may be measured again now.
 bool np_may_remeasure(np_pair q, uint prev)
 {
-    if (prev == NP_NONE || prev_manifolds[prev].measured_normal.w == 0.0) return false;
-    if (!np_reusable_pair(q.a, q.b, q.sub)) return false;
+    if (prev == NP_NONE || prev_manifolds[prev].info.x == 0u ||
+        prev_manifolds[prev].measured_normal.w == 0.0)
+        return false;
+    if (!np_reusable_pair(q.a, q.b, q.sub) ||
+        floatBitsToUint(prev_manifolds[prev].measured_offset.w) != np_shapes_key(q.a, q.b))
+        return false;
     vec4 turn;
     vec3 offset;
     np_relative_pose(q.a, q.b, turn, offset);

@@ -63,14 +63,19 @@ uint round_kind(uint p, uint kind, inout uint points)
     uint first = q.first.type;
     bool unbounded = first == TB_GPU_SHAPE_PLANE || first == TB_GPU_SHAPE_MESH ||
                      first == TB_GPU_SHAPE_HEIGHTFIELD;   // never culled (np_round_apart)
-    if (unbounded || np_balls_near(q.first, q.second, q.margin)) {
-        uint prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
+    bool near = unbounded || np_balls_near(q.first, q.second, q.margin);
+    bool reuse = params.contact.w >= 0.0;   // tb_world_set_contact_reuse
+    uint prev = NP_NONE;
+    if (near && reuse) {
+        prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
         if (np_may_remeasure(q, prev)) {
             points = np_remeasure(q, p, prev);
             return TB_ROUND_KINDS;
         }
-        if (!np_round_apart(q.first, q.second, q.margin))
-            return kind + supports_bucket(p, prev);
+    }
+    if (near && !np_round_apart(q.first, q.second, q.margin)) {
+        if (!reuse) prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
+        return kind + supports_bucket(p, prev);
     }
     // As round_points with no points.
     np_pair_start(q);
