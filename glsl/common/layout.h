@@ -73,7 +73,7 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
                                       (narrowphase/round_order: those round_cull leaves to
                                       round_points); the second each pair's kind, from
                                       round_cull for round_order */
-/* The contact arrays, the largest of the step (about 600 bytes per pair), are no bindings:
+/* The contact arrays, the largest of the step (about 1,000 bytes per pair), are no bindings:
  * shaders reach them through the device addresses in tb_gpu_params.contact_arrays, so no
  * descriptor range (maxStorageBufferRange: 128 MiB on lavapipe, 4 GiB on NVIDIA) limits how
  * many pairs a step can hold; memory does (world.glsl names them like arrays):

@@ -1,10 +1,10 @@
 // Manifolds measured again instead of found again. A pair whose bodies have hardly moved
-// against each other since its manifold was measured (b's centre within params.contact.w of
+// against each other since its manifold was found (b's centre within params.contact.w of
 // where it was in a's frame, its turn within the angle whose half's cosine is
-// params.limits.y; tb_world_set_contact_reuse) touches by the same
-// features: its points are carried to where the bodies are now and their separations
-// measured again along the normal, which is kept in a's frame. The measured pose stays the
-// one the points were found at, so the drift from it cannot grow step by step.
+// params.limits.y; tb_world_set_contact_reuse) touches by the same features: its points
+// are carried to where the bodies are now and their separations measured again along the
+// normal. The pose compared with stays the one the points were found at, so the drift
+// from it cannot add up step by step.
 //
 // A point is kept on each body as an anchor in the body's frame and a reach along the
 // normal. On a flat feature (a box's, hull's, plane's, a cylinder's cap, a cone's base) the
@@ -13,10 +13,11 @@
 // distance: a round body that rolls a little keeps touching along the normal, where a
 // point fixed on its surface would turn away with it, and push it on the way it turned.
 //
-// The point between the two surfaces lies, across the normal, where the round one touches
-// (where one is flat and the other round; else midway). The normal is kept in the frame of the body whose feature is flat (its reach 0): turned
-// with a round body it would tilt as the body rolls. Where both are round at the first point
-// (spheres, capsules side by side) it runs from a's anchor to b's.
+// Across the normal the point lies where the round surface touches (where one side is
+// flat and the other round; else midway). The normal is kept in the frame of the body whose
+// feature is flat (its reach 0): turned with a round body it would tilt as the body rolls.
+// Where both are round at the first point (spheres, capsules side by side) it runs from a's
+// anchor to b's.
 //
 // Only manifolds no deeper than the contact margin are kept: a deeper one is no resting
 // contact, and a wrong normal (EPA's rare slip) would be held as long as the pair stayed.
@@ -25,7 +26,6 @@
 // 0, or a compound or mesh body) is found again each step.
 #ifndef TB_NP_REUSE_GLSL
 #define TB_NP_REUSE_GLSL
-
 
 vec4 np_quat_conj(vec4 q)
 {
