@@ -7,6 +7,12 @@ vec4 quat_mul(vec4 a, vec4 b)
     return vec4(a.w * b.xyz + b.w * a.xyz + cross(a.xyz, b.xyz), a.w * b.w - dot(a.xyz, b.xyz));
 }
 
+// The inverse of the unit quaternion q.
+vec4 quat_conj(vec4 q)
+{
+    return vec4(-q.xyz, q.w);
+}
+
 // Rotation matrix; its columns are the body's axes in world space.
 // v turned by the unit quaternion q.
 vec3 quat_rotate(vec4 q, vec3 v)

@@ -27,15 +27,10 @@
 #ifndef TB_NP_REUSE_GLSL
 #define TB_NP_REUSE_GLSL
 
-vec4 np_quat_conj(vec4 q)
-{
-    return vec4(-q.xyz, q.w);
-}
-
 // Where b is in a's frame: its rotation (quaternion) and its centre.
 void np_relative_pose(uint a, uint b, out vec4 turn, out vec3 offset)
 {
-    vec4 qa = np_quat_conj(body_rot[a]);
+    vec4 qa = quat_conj(body_rot[a]);
     turn = quat_mul(qa, body_rot[b]);
     offset = quat_rotate(qa, body_pos[b].xyz - body_pos[a].xyz);
 }
@@ -102,7 +97,7 @@ void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
         manifolds[slot].measured_normal.w = 0.0;
         return;
     }
-    vec4 qa = np_quat_conj(body_rot[a]), qb = np_quat_conj(body_rot[b]);
+    vec4 qa = quat_conj(body_rot[a]), qb = quat_conj(body_rot[b]);
     vec3 xa = body_pos[a].xyz, xb = body_pos[b].xyz;
     vec3 n = manifolds[slot].normal.xyz;
     vec3 na = quat_rotate(qa, n), nb = quat_rotate(qb, -n);
@@ -130,7 +125,8 @@ void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
     manifolds[slot].measured_offset = vec4(offset, uintBitsToFloat(np_shapes_key(a, b)));
 }
 
-// Whether last step's manifold prev of pair q may be measured again now.
+// Whether last step's manifold prev of pair q may be measured again now (round_cull asks
+// only while reuse is on, params.contact.w >= 0).
 bool np_may_remeasure(np_pair q, uint prev)
 {
     if (prev == NP_NONE || prev_manifolds[prev].info.x == 0u ||
@@ -144,7 +140,7 @@ bool np_may_remeasure(np_pair q, uint prev)
     np_relative_pose(q.a, q.b, turn, offset);
     vec3 drift = offset - prev_manifolds[prev].measured_offset.xyz;
     float reach = params.contact.w;
-    return reach >= 0.0 && dot(drift, drift) <= reach * reach &&
+    return dot(drift, drift) <= reach * reach &&
            abs(dot(turn, prev_manifolds[prev].measured_turn)) >= params.limits.y;
 }
 
@@ -182,8 +178,7 @@ uint np_remeasure(np_pair q, uint slot, uint prev)
         manifolds[slot].impulse[k] = vec4(prev_manifolds[prev].impulse[k].xyz, 0.0);
         set_manifold_slip(slot, k, np_prev_slip(prev, k));
     }
-    np_finish(q.t, count, n, q.a, q.b, sqrt(q.body_a.material.x * q.body_b.material.x),
-              max(q.body_a.material.y, q.body_b.material.y));
+    np_pair_finish(q, count, q.swapped ? -n : n);   // it takes the canonical order's normal
     manifolds[slot].feature = q.t.prev_features;
     manifolds[slot].axis.y = prev_manifolds[prev].axis.y;
     manifolds[slot].measured_normal = prev_manifolds[prev].measured_normal;
