@@ -171,6 +171,7 @@ void np_finish(np_target t, uint count, vec3 normal, uint a, uint b, float frict
     }
     manifolds[t.slot].normal = vec4(normal, friction);
     manifolds[t.slot].info = uvec4(count, a, b, floatBitsToUint(restitution));
+    manifolds[t.slot].measured_normal.w = 0.0;   // nothing kept (reuse.glsl), unless set after
 }
 
 #endif

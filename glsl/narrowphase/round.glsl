@@ -522,6 +522,11 @@ bool np_segments_normal(vec3 p1, vec3 q1, vec3 p2, vec3 q2, float ra, float rb, 
 // in the manifold (axis.y), and round_cull groups the pair by them in the next step.
 uint np_round_supports = 0u;
 
+// Where np_round_normal's GJK showed the two shapes farther apart than the margin: the unit
+// direction from A to B along which they are (world space; 0 where it did not). round_points
+// keeps it (reuse.glsl), and round_cull tries it first in the next step.
+vec3 np_round_apart_along = vec3(0.0);
+
 // Normal (A to B) and surface points of two convex shapes: in closed form for a sphere or
 // capsule against a capsule, else GJK on the cores and EPA where they overlap. False when
 // they are farther apart than the margin (or EPA found nothing); GJK gives up on a pair as
@@ -545,9 +550,16 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec
     n = vec3(0.0, 1.0, 0.0);
     pa = g.pa;
     pb = g.pb;
-    if (g.status == NP_GJK_FAR) return false;
+    vec3 along = dot(g.v, g.v) > 0.0 ? -normalize(g.v) : vec3(0.0);
+    if (g.status == NP_GJK_FAR) {
+        np_round_apart_along = along;
+        return false;
+    }
     if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
-        if (g.distance - A.radius - B.radius >= margin) return false;
+        if (g.distance - A.radius - B.radius >= margin) {
+            np_round_apart_along = along;
+            return false;
+        }
         n = -normalize(g.v);
     } else {
         if (!np_epa_or_touch(g, np_epa(A, B, g.simplex), n, pa, pb)) return false;

@@ -34,6 +34,7 @@
 #include "round.glsl"
 #include "round_kinds.glsl"
 #include "reuse.glsl"
+#include "apart.glsl"
 
 // The bucket of the GJK supports pair q (p) took last step (round_points keeps them in its
 // manifold's axis.y; they change for about one pair in ten from step to step): up to 3,
@@ -64,12 +65,17 @@ uint round_kind(uint p, uint kind, inout uint points)
     bool unbounded = first == TB_GPU_SHAPE_PLANE || first == TB_GPU_SHAPE_MESH ||
                      first == TB_GPU_SHAPE_HEIGHTFIELD;   // never culled (np_round_apart)
     bool near = unbounded || np_balls_near(q.first, q.second, q.margin);
+    // A pair that GJK found apart last step is tried along the direction it found first.
     bool reuse = params.contact.w >= 0.0;   // tb_world_set_contact_reuse
     uint prev = NP_NONE;
     if (near && reuse) {
         prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
         if (np_may_remeasure(q, prev)) {
             points = np_remeasure(q, p, prev);
+            return TB_ROUND_KINDS;
+        }
+        if (np_still_apart(q, prev)) {
+            np_stay_apart(q, prev);
             return TB_ROUND_KINDS;
         }
     }

@@ -28,6 +28,7 @@
 #include "epa.glsl"
 #include "round.glsl"
 #include "reuse.glsl"
+#include "apart.glsl"
 
 uint round_points(uint p)
 {
@@ -44,6 +45,7 @@ uint round_points(uint p)
     np_pair_finish(q, count, normal);
     manifolds[q.t.slot].axis.y = np_round_supports;
     np_keep_measured(q.a, q.b, q.sub, q.t.slot, count);
+    if (count == 0u) np_keep_apart(q, q.t.slot, np_round_apart_along);
     return count;
 }
 
