@@ -194,6 +194,7 @@ static void rig_run(rig* r, uint32_t parity, uint32_t count)
     params.counts.x = w->store.slots;
     params.capacity.x = r->cap;
     params.contact.x = MARGIN;
+    params.contact.w = -1.0f;   /* no contact reuse: the rig checks what the narrowphase finds */
     params.contact_arrays[0] = tb_gpu_addresses(r->dev[BUF_MANIFOLDS].address,
                                                 r->dev[BUF_PREV_MANIFOLDS].address);
     for (int i = 0; i < BUF_COUNT; i++)

@@ -633,11 +633,11 @@ static pair_summary summarise(const tb_contact* c, const tb_contact* list, uint3
     return s;
 }
 
-/* A settled heap of capsules, cylinders and cones on a plane and a box, stepped once from
- * its snapshot with reuse (the default) and once without: each pair's contacts measured
- * again are as many as those found anew, within what the bounds allow of them (centroid
- * 5 mm, deepest separation 1 mm, normal 1.5 degrees), and not all to the bit (so they were
- * measured again). */
+/* A settled heap of capsules, cylinders, cones, boxes and hulls on a plane and a box, stepped
+ * once from its snapshot with reuse (the default) and once without: each pair's contacts
+ * measured again are as many as those found anew, within what the bounds allow of them
+ * (centroid 5 mm, deepest separation 1 mm, normal 1.5 degrees), and not all to the bit (so
+ * they were measured again). */
 static void test_contact_reuse_matches_narrowphase(void** state)
 {
     (void)state;
@@ -646,8 +646,9 @@ static void test_contact_reuse_matches_narrowphase(void** state)
     tb_body_def ledge = th_static_def(th_box(w, th_v3(1.0f, 0.25f, 1.0f)), th_v3(1.5f, 0.25f, 0));
     th_body(w, &ledge);
     tb_shape_type kinds[3] = { TB_SHAPE_CAPSULE, TB_SHAPE_CYLINDER, TB_SHAPE_CONE };
-    for (int i = 0; i < 18; i++) {
-        tb_shape_id s = make_round(w, kinds[i % 3], 0.2f, 0.3f);
+    tb_shape_id box = th_box(w, th_v3(0.2f, 0.15f, 0.25f)), rock = th_rock(w);
+    for (int i = 0; i < 24; i++) {
+        tb_shape_id s = i % 4 == 3 ? (i % 8 == 3 ? box : rock) : make_round(w, kinds[i % 3], 0.2f, 0.3f);
         tb_body_def d = th_dynamic_def(s, th_v3(0.55f * (i % 6) - 0.4f, 0.8f + 0.7f * (i / 6),
                                                  0.3f * ((i * 7) % 3) - 0.3f));
         float angle = 0.4f * (float)i;

@@ -34,6 +34,7 @@
 #include "hull_plane.glsl"
 #include "hull_sphere.glsl"
 #include "pair.glsl"
+#include "reuse.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
 
@@ -78,11 +79,15 @@ uint pair_contacts(uint p)
         return 0u;
     }
     np_pair q = np_pair_load(p);
+    // A box's or hull's pair that has hardly moved since its manifold was found (reuse.glsl).
+    bool reused = params.contact.w >= 0.0 && np_flat_pair_reused(q);
+    if (reused && np_may_remeasure(q, q.t.prev)) return np_remeasure(q, p, q.t.prev);
     vec3 normal;
     // The separating axis a hull pair caches for the next step; other pairs have none.
     np_pair_start(q);
     uint count = np_collide(q.t, q.first, q.second, q.margin, normal);
     np_pair_finish(q, count, normal);
+    if (reused && count != 0u) np_keep_measured(q.a, q.b, q.sub, p, count);
     return count;
 }
 

@@ -17,6 +17,7 @@
 #include "hull_clip.glsl"
 #include "hull_hull.glsl"
 #include "pair.glsl"
+#include "reuse.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };
 
@@ -28,6 +29,7 @@ uint hull_points(uint p)
     uint count = np_hull_hull_points(q.t, q.first, q.second, axis.x, axis.z, q.margin, normal);
     manifolds[p].axis.z = 0u;
     np_pair_finish(q, count, normal);
+    np_keep_measured(q.a, q.b, q.sub, p, count);
     return count;
 }
 
