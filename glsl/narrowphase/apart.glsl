@@ -47,8 +47,7 @@ bool np_still_apart(np_pair q, uint prev)
 // the direction is kept on.
 void np_stay_apart(np_pair q, uint prev)
 {
-    np_pair_start(q);
-    np_pair_finish(q, 0u, vec3(0.0, 1.0, 0.0));
+    np_finish_empty(q.t.slot, q.a, q.b);
     manifolds[q.t.slot].measured_normal = prev_manifolds[prev].measured_normal;
     manifolds[q.t.slot].measured_offset.w = prev_manifolds[prev].measured_offset.w;
 }

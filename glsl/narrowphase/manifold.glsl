@@ -158,6 +158,19 @@ void np_emit(np_target t, uint k, vec3 point, float separation, uint feature)
     manifolds[t.slot].feature[k] = feature;
 }
 
+// A manifold without points as round_cull writes it for the many round pairs it finds apart:
+// the count and bodies (all that is read of an empty manifold: every reader of points,
+// impulses, slip and features stops at the count), the axis a pair caches cleared, nothing
+// kept for reuse. Its point slots keep what they held; zeroing them, as np_finish does,
+// took 0.08 of round_cull's 0.51 ms in the 100k shapes pile on an H200.
+void np_finish_empty(uint slot, uint a, uint b)
+{
+    manifolds[slot].axis = uvec4(0u);
+    manifolds[slot].normal = vec4(0.0, 1.0, 0.0, 0.0);
+    manifolds[slot].info = uvec4(0u, a, b, 0u);
+    manifolds[slot].measured_normal.w = 0.0;
+}
+
 // Normal, materials and count; unused points are zeroed so a step's output depends on
 // nothing but its input.
 void np_finish(np_target t, uint count, vec3 normal, uint a, uint b, float friction,

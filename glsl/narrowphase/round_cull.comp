@@ -83,9 +83,7 @@ uint round_kind(uint p, uint kind, inout uint points)
         if (!reuse) prev = np_find_previous(q.a, q.b, q.sub, current_half() ^ 1u);
         return kind + supports_bucket(p, prev);
     }
-    // As round_points with no points.
-    np_pair_start(q);
-    np_pair_finish(q, 0u, vec3(0.0, 1.0, 0.0));
+    np_finish_empty(p, q.a, q.b);
     return TB_ROUND_KINDS;
 }
 
