@@ -20,7 +20,10 @@ void np_keep_apart(np_pair q, uint slot, vec3 along)
 {
     if (dot(along, along) == 0.0 || params.contact.w < 0.0 || !np_reusable_pair(q.a, q.b, q.sub))
         return;
-    manifolds[slot].measured_normal = vec4(transpose(q.first.rot) * along, NP_APART_ALONG);
+    // The first body's turn loaded again: kept in registers from the pair, its rotation
+    // would be held all through GJK.
+    vec4 turn = quat_conj(body_rot[q.swapped ? q.b : q.a]);
+    manifolds[slot].measured_normal = vec4(quat_rotate(turn, along), NP_APART_ALONG);
     manifolds[slot].measured_offset.w = uintBitsToFloat(np_shapes_key(q.a, q.b));
 }
 
