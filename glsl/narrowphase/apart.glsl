@@ -33,8 +33,7 @@ void np_keep_apart(np_pair q, uint slot, vec3 along)
 bool np_still_apart(np_pair q, uint prev)
 {
     if (prev == NP_NONE || prev_manifolds[prev].measured_normal.w != NP_APART_ALONG ||
-        prev_manifolds[prev].info.x != 0u || !np_reusable_pair(q.a, q.b, q.sub) ||
-        floatBitsToUint(prev_manifolds[prev].measured_offset.w) != np_shapes_key(q.a, q.b))
+        prev_manifolds[prev].info.x != 0u || !np_kept_for(q, prev))
         return false;
     vec3 along = q.first.rot * prev_manifolds[prev].measured_normal.xyz;
     np_convex A = np_convex_rounded(q.first), B = np_convex_rounded(q.second);

@@ -87,7 +87,7 @@ uint pair_contacts(uint p)
     np_pair_start(q);
     uint count = np_collide(q.t, q.first, q.second, q.margin, normal);
     np_pair_finish(q, count, normal);
-    if (reused && count != 0u) np_keep_measured(q.a, q.b, q.sub, p, count);
+    if (reused) np_keep_measured(q.a, q.b, q.sub, p, count);
     return count;
 }
 

@@ -87,10 +87,10 @@ vec4 np_anchor(uint body, vec3 p, vec3 u)
     return vec4(p - u * reach, reach);
 }
 
-// Keeps manifold slot's `count` points, as written, for a later step, or marks it not to be
-// measured again. Only the first `count` anchors are written or read. Every manifold of a
-// round pair with points passes here or through np_remeasure; one without points is never
-// measured again, whatever its slot held before (np_may_remeasure).
+// Keeps manifold slot's `count` points, as written (after np_finish, which marks a manifold
+// as not kept), for a later step. Only the first `count` anchors are written or read. Every
+// manifold of a round or hull pair with points passes here or through np_remeasure; one
+// without points is never measured again, whatever its slot held before (np_may_remeasure).
 void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
 {
     bool keep = count != 0u && params.contact.w >= 0.0 && np_reusable_pair(a, b, sub);
@@ -98,10 +98,7 @@ void np_keep_measured(uint a, uint b, uint sub, uint slot, uint count)
     // step (a step's rare wrong normal, kept, would hold the pair in it).
     for (uint k = 0u; k < count; k++)
         keep = keep && manifolds[slot].point[k].w >= -params.contact.x;
-    if (!keep) {
-        manifolds[slot].measured_normal.w = 0.0;
-        return;
-    }
+    if (!keep) return;
     vec4 qa = quat_conj(body_rot[a]), qb = quat_conj(body_rot[b]);
     vec3 xa = body_pos[a].xyz, xb = body_pos[b].xyz;
     vec3 n = manifolds[slot].normal.xyz;
@@ -139,15 +136,20 @@ bool np_flat_pair_reused(np_pair q)
     return q.second.type == TB_GPU_SHAPE_HULL && q.first.type != TB_GPU_SHAPE_SPHERE;
 }
 
+// Whether last step's manifold prev of pair q kept something of the very pair: of whole
+// bodies, their shapes still those it was kept with (a slot reused by a new body is not).
+bool np_kept_for(np_pair q, uint prev)
+{
+    return np_reusable_pair(q.a, q.b, q.sub) &&
+           floatBitsToUint(prev_manifolds[prev].measured_offset.w) == np_shapes_key(q.a, q.b);
+}
+
 // Whether last step's manifold prev of pair q may be measured again now (round_cull asks
 // only while reuse is on, params.contact.w >= 0).
 bool np_may_remeasure(np_pair q, uint prev)
 {
     if (prev == NP_NONE || prev_manifolds[prev].info.x == 0u ||
-        prev_manifolds[prev].measured_normal.w == 0.0)
-        return false;
-    if (!np_reusable_pair(q.a, q.b, q.sub) ||
-        floatBitsToUint(prev_manifolds[prev].measured_offset.w) != np_shapes_key(q.a, q.b))
+        prev_manifolds[prev].measured_normal.w == 0.0 || !np_kept_for(q, prev))
         return false;
     vec4 turn;
     vec3 offset;

@@ -550,17 +550,16 @@ bool np_round_normal(np_convex world_a, np_convex world_b, float margin, out vec
     n = vec3(0.0, 1.0, 0.0);
     pa = g.pa;
     pb = g.pb;
-    vec3 along = dot(g.v, g.v) > 0.0 ? -normalize(g.v) : vec3(0.0);
     if (g.status == NP_GJK_FAR) {
-        np_round_apart_along = along;
+        np_round_apart_along = -normalize(g.v);   // the direction of its support plane
         return false;
     }
     if (g.status != NP_GJK_OVERLAP && g.distance > 0.0) {
+        n = -normalize(g.v);
         if (g.distance - A.radius - B.radius >= margin) {
-            np_round_apart_along = along;
+            np_round_apart_along = n;
             return false;
         }
-        n = -normalize(g.v);
     } else {
         if (!np_epa_or_touch(g, np_epa(A, B, g.simplex), n, pa, pb)) return false;
         np_keep_shallower_axis(A, B, n, pa, pb);

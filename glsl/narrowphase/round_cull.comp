@@ -65,7 +65,6 @@ uint round_kind(uint p, uint kind, inout uint points)
     bool unbounded = first == TB_GPU_SHAPE_PLANE || first == TB_GPU_SHAPE_MESH ||
                      first == TB_GPU_SHAPE_HEIGHTFIELD;   // never culled (np_round_apart)
     bool near = unbounded || np_balls_near(q.first, q.second, q.margin);
-    // A pair that GJK found apart last step is tried along the direction it found first.
     bool reuse = params.contact.w >= 0.0;   // tb_world_set_contact_reuse
     uint prev = NP_NONE;
     if (near && reuse) {
@@ -74,6 +73,7 @@ uint round_kind(uint p, uint kind, inout uint points)
             points = np_remeasure(q, p, prev);
             return TB_ROUND_KINDS;
         }
+        // A pair GJK found apart last step is tried along the direction it found first.
         if (np_still_apart(q, prev)) {
             np_stay_apart(q, prev);
             return TB_ROUND_KINDS;
