@@ -33,11 +33,11 @@
 
 // The lanes of this shader's sweep (TB_BLOCK_LANES, defined before this file by the sweeps
 // that want more than 8; block/bounce keeps 8 and runs on the sweeps' dispatch sizes, its
-// extra lanes idle).
+// extra lanes idle). A plain number, so the preprocessor can test it (solve.glsl's sums).
 #ifndef TB_BLOCK_LANES
-#define TB_BLOCK_LANES 8u
+#define TB_BLOCK_LANES 8
 #endif
-const uint BLOCK_LANES = BLOCK_LANES_OF(TB_BLOCK_LANES);
+const uint BLOCK_LANES = BLOCK_LANES_OF(uint(TB_BLOCK_LANES));
 
 bool block_dynamic(uint i)
 {
