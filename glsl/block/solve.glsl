@@ -103,33 +103,98 @@ void add_inertia(inout newton e, uint i, tb_gpu_solver_body s, float h)
     e.ga += D * rotation_vector(off);
 }
 
-// Row u of a point at lever arm r (at the step's start), sign +1 on body b and -1 on body a:
-// the rows are linear in the motion (block_rows), so this Jacobian is exact and the Hessian
-// needs no geometric stiffness.
-void add_row(inout newton e, vec3 u, vec3 r, float sign, float f, float k)
+// What a body's contact points add to its Newton step, summed. A point's three rows (the
+// normal and the friction directions, orthonormal) share its stiffness k and its lever arm r
+// (at the step's start; sign +1 on body b, -1 on body a), and the rows are linear in the
+// motion (block_rows), so their Jacobian is exact and their Hessian sums in closed form:
+//     sum_u k u u^T = k I,   sum_u k u (r x u)^T = -k skew(r),
+//     sum_u k (r x u)(r x u)^T = k (|r|^2 I - r r^T)
+// (the sign is squared away), and the gradient is the point's force F and its moment r x F.
+// So the points of a body sum 16 numbers, not the 33 of three outer products a row: the
+// stiffness (A = k I), the stiffness-weighted lever arm (B = -skew(kr)), the rotation
+// block's diagonal and off-diagonal, and the gradient.
+struct point_sums {
+    float k;
+    vec3 kr;
+    vec3 d_diagonal;   // D[0][0], D[1][1], D[2][2]
+    vec3 d_off;        // D[1][2], D[0][2], D[0][1]
+    vec3 gl, ga;
+};
+
+point_sums no_point_sums()
 {
-    vec3 jl = sign * u, ja = sign * cross(r, u);
-    e.gl -= f * jl;
-    e.ga -= f * ja;
-    e.A += k * outerProduct(jl, jl);
-    e.B += k * outerProduct(jl, ja);
-    e.D += k * outerProduct(ja, ja);
+    return point_sums(0.0, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
 }
 
-void add_point(inout newton e, block_point q, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+void add_rows(inout point_sums s, vec3 r, float k, vec3 F)
+{
+    vec3 r2 = r * r;
+    s.k += k;
+    s.kr += k * r;
+    s.d_diagonal += k * (r2.yzx + r2.zxy);
+    s.d_off -= k * (r.yxx * r.zzy);
+    s.gl -= F;
+    s.ga -= cross(r, F);
+}
+
+newton newton_of(point_sums s)
+{
+    newton e;
+    e.A = mat3(s.k);
+    e.B = -skew(s.kr);
+    vec3 d = s.d_diagonal, o = s.d_off;
+    e.D = mat3(d.x, o.z, o.y, o.z, d.y, o.x, o.y, o.x, d.z);
+    e.gl = s.gl;
+    e.ga = s.ga;
+    return e;
+}
+
+newton newton_of(newton e)
+{
+    return e;
+}
+
+// In a sweep with joints the points add to the joints' general blocks (a joint's rows do
+// not share one stiffness and lever arm); without, to the sums above.
+void add_rows(inout newton e, vec3 r, float k, vec3 F)
+{
+    point_sums s = no_point_sums();
+    add_rows(s, r, k, F);
+    newton p = newton_of(s);
+    e.A += p.A;
+    e.B += p.B;
+    e.D += p.D;
+    e.gl += p.gl;
+    e.ga += p.ga;
+}
+
+#ifdef TB_BLOCK_JOINTS
+#define body_sums newton
+#define no_body_sums no_newton
+#else
+#define body_sums point_sums
+#define no_body_sums no_point_sums
+#endif
+
+void add_point(inout body_sums e, block_point q, bool is_b, vec3 dpa, vec3 va, vec3 dpb,
+               vec3 vb)
 {
     vec3 C = block_rows(q, dpa, va, dpb, vb);
     bvec3 on;
     vec3 f = block_forces(q.lambda, q.stiffness, C, q.friction, on);
     vec3 r = is_b ? q.rb : q.ra;
     float sign = is_b ? 1.0 : -1.0;
-    add_row(e, q.n, r, sign, f.x, q.stiffness);
-    add_row(e, q.t1, r, sign, f.y, q.stiffness);
-    add_row(e, q.t2, r, sign, f.z, q.stiffness);
+    add_rows(e, r, q.stiffness, sign * (f.x * q.n + f.y * q.t1 + f.z * q.t2));
 }
 
 // The sums over groups of `lanes` neighbouring lanes (a power of two), by a butterfly of
 // shuffles: every lane of a group ends with the same sum, bit for bit.
+float butterfly_sum(float v, uint lanes)
+{
+    for (uint m = lanes >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
+    return v;
+}
+
 vec3 butterfly_sum(vec3 v, uint lanes)
 {
     for (uint m = lanes >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
@@ -151,82 +216,85 @@ newton butterfly_sum(newton e, uint lanes)
     return e;
 }
 
-// The sums over the BLOCK_LANES lanes of a body without a butterfly of every number: the
-// contacts' A and D are symmetric (k J^T J), so 27 numbers (their upper triangles, B and
-// the gradient, padded to SUM_WORDS) are summed, by a reduce-scatter and then an allgather
-// over the same pairs of lanes in the same order as butterfly_sum. At each level of the
-// reduce-scatter a lane sends its partner the half of its numbers the partner keeps and
-// adds the partner's to the half it keeps (own + partner's, as the butterfly adds them, so
-// each total is the butterfly's to the bit); the allgather hands the totals back. 8 lanes
-// shuffle 56 numbers instead of 99 (the butterfly of every number): on an H200 the
-// butterfly alone cost 12 % of the deep pile's solve and 18 % of the pyramid's.
-// A joint's rows are not symmetric: the sweeps with joints keep the butterfly.
-#define SUM_WORDS 32u
+point_sums butterfly_sum(point_sums s, uint lanes)
+{
+    s.k = butterfly_sum(s.k, lanes);
+    s.kr = butterfly_sum(s.kr, lanes);
+    s.d_diagonal = butterfly_sum(s.d_diagonal, lanes);
+    s.d_off = butterfly_sum(s.d_off, lanes);
+    s.gl = butterfly_sum(s.gl, lanes);
+    s.ga = butterfly_sum(s.ga, lanes);
+    return s;
+}
 
-// One pair of a level (TB_BLOCK_LANES' literal indices, so the numbers stay in registers:
-// the same sums through loops over an array indexed by the level's count went to local
-// memory and made the deep pile's solve five times slower): word k of the half a lane keeps
-// plus its partner's; the allgather's pair puts its and the partner's word back in place.
+// The point sums over the TB_BLOCK_LANES lanes of a body without a butterfly of each of
+// the 16 numbers: a reduce-scatter and then an allgather. At each level of the
+// reduce-scatter a lane sends its partner the half of its numbers the partner keeps and
+// adds the partner's to the half it keeps; after log2(16) levels each number's total is on
+// one lane (on 32 lanes, on a pair that add theirs alike), and the allgather hands the
+// totals back, so every lane holds the same totals, bit for bit. 8 lanes shuffle 28
+// numbers instead of 48 (the butterfly of each). The levels use literal indices, so the
+// numbers stay in registers: the same sums through loops over an array indexed by a
+// level's count went to local memory and made the deep pile's solve five times slower.
+#define SUM_WORDS 16u
 #define KEEP1(k, h, m) { float mine = upper ? v[(k) + (h)] : v[k];                     \
     float theirs = subgroupShuffleXor(upper ? v[k] : v[(k) + (h)], m); v[k] = mine + theirs; }
 #define KEEP2(k, h, m) KEEP1(k, h, m) KEEP1((k) + 1, h, m)
 #define KEEP4(k, h, m) KEEP2(k, h, m) KEEP2((k) + 2, h, m)
 #define KEEP8(k, h, m) KEEP4(k, h, m) KEEP4((k) + 4, h, m)
-#define KEEP16(k, h, m) KEEP8(k, h, m) KEEP8((k) + 8, h, m)
 #define BACK1(k, h, m) { float theirs = subgroupShuffleXor(v[k], m);                   \
     v[(k) + (h)] = upper ? v[k] : theirs; v[k] = upper ? theirs : v[k]; }
 #define BACK2(k, h, m) BACK1(k, h, m) BACK1((k) + 1, h, m)
 #define BACK4(k, h, m) BACK2(k, h, m) BACK2((k) + 2, h, m)
 #define BACK8(k, h, m) BACK4(k, h, m) BACK4((k) + 4, h, m)
-#define BACK16(k, h, m) BACK8(k, h, m) BACK8((k) + 8, h, m)
 #define LEVEL(step, m) { bool upper = (gl_SubgroupInvocationID & (m)) != 0u; step; }
 
-void symmetric_sum(inout float v[SUM_WORDS])
+void scatter_gather_sum(inout float v[SUM_WORDS])
 {
     const uint L = uint(TB_BLOCK_LANES);
-    LEVEL(KEEP16(0, 16, L / 2u), L / 2u)
-    LEVEL(KEEP8(0, 8, L / 4u), L / 4u)
-    LEVEL(KEEP4(0, 4, L / 8u), L / 8u)
+    LEVEL(KEEP8(0, 8, L / 2u), L / 2u)
+    LEVEL(KEEP4(0, 4, L / 4u), L / 4u)
+    LEVEL(KEEP2(0, 2, L / 8u), L / 8u)
 #if TB_BLOCK_LANES >= 16
-    LEVEL(KEEP2(0, 2, L / 16u), L / 16u)
+    LEVEL(KEEP1(0, 1, L / 16u), L / 16u)
 #endif
 #if TB_BLOCK_LANES >= 32
-    LEVEL(KEEP1(0, 1, L / 32u), L / 32u)
-    LEVEL(BACK1(0, 1, L / 32u), L / 32u)
+    v[0] += subgroupShuffleXor(v[0], L / 32u);
 #endif
 #if TB_BLOCK_LANES >= 16
-    LEVEL(BACK2(0, 2, L / 16u), L / 16u)
+    LEVEL(BACK1(0, 1, L / 16u), L / 16u)
 #endif
-    LEVEL(BACK4(0, 4, L / 8u), L / 8u)
-    LEVEL(BACK8(0, 8, L / 4u), L / 4u)
-    LEVEL(BACK16(0, 16, L / 2u), L / 2u)
+    LEVEL(BACK2(0, 2, L / 8u), L / 8u)
+    LEVEL(BACK4(0, 4, L / 4u), L / 4u)
+    LEVEL(BACK8(0, 8, L / 2u), L / 2u)
 }
 
+point_sums scatter_gather_sum(point_sums s)
+{
+    float v[SUM_WORDS];
+    v[0] = s.k;
+    v[1] = s.kr.x; v[2] = s.kr.y; v[3] = s.kr.z;
+    v[4] = s.d_diagonal.x; v[5] = s.d_diagonal.y; v[6] = s.d_diagonal.z;
+    v[7] = s.d_off.x; v[8] = s.d_off.y; v[9] = s.d_off.z;
+    v[10] = s.gl.x; v[11] = s.gl.y; v[12] = s.gl.z;
+    v[13] = s.ga.x; v[14] = s.ga.y; v[15] = s.ga.z;
+    scatter_gather_sum(v);
+    return point_sums(v[0], vec3(v[1], v[2], v[3]), vec3(v[4], v[5], v[6]),
+                      vec3(v[7], v[8], v[9]), vec3(v[10], v[11], v[12]),
+                      vec3(v[13], v[14], v[15]));
+}
+
+// The sums over the BLOCK_LANES lanes of a body; a sweep's subgroup narrower than the
+// shader's lanes (or a CPU device's one lane a body) adds them by the butterfly.
 newton lanes_sum(newton e)
 {
-#ifdef TB_BLOCK_JOINTS
     return butterfly_sum(e, BLOCK_LANES);
-#else
-    float v[SUM_WORDS];
-    v[0] = e.A[0][0]; v[1] = e.A[1][1]; v[2] = e.A[2][2];
-    v[3] = e.A[0][1]; v[4] = e.A[0][2]; v[5] = e.A[1][2];
-    v[6] = e.D[0][0]; v[7] = e.D[1][1]; v[8] = e.D[2][2];
-    v[9] = e.D[0][1]; v[10] = e.D[0][2]; v[11] = e.D[1][2];
-    v[12] = e.B[0].x; v[13] = e.B[0].y; v[14] = e.B[0].z;
-    v[15] = e.B[1].x; v[16] = e.B[1].y; v[17] = e.B[1].z;
-    v[18] = e.B[2].x; v[19] = e.B[2].y; v[20] = e.B[2].z;
-    v[21] = e.gl.x; v[22] = e.gl.y; v[23] = e.gl.z;
-    v[24] = e.ga.x; v[25] = e.ga.y; v[26] = e.ga.z;
-    v[27] = 0.0; v[28] = 0.0; v[29] = 0.0; v[30] = 0.0; v[31] = 0.0;
-    if (BLOCK_LANES != uint(TB_BLOCK_LANES)) return butterfly_sum(e, BLOCK_LANES);
-    symmetric_sum(v);
-    e.A = mat3(v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2]);
-    e.D = mat3(v[6], v[9], v[10], v[9], v[7], v[11], v[10], v[11], v[8]);
-    e.B = mat3(v[12], v[13], v[14], v[15], v[16], v[17], v[18], v[19], v[20]);
-    e.gl = vec3(v[21], v[22], v[23]);
-    e.ga = vec3(v[24], v[25], v[26]);
-    return e;
-#endif
+}
+
+newton lanes_sum(point_sums s)
+{
+    if (BLOCK_LANES != uint(TB_BLOCK_LANES)) return newton_of(butterfly_sum(s, BLOCK_LANES));
+    return newton_of(scatter_gather_sum(s));
 }
 
 // How far a body moves along its Newton step (push.args.z, in thousandths; 0: the whole
@@ -301,7 +369,7 @@ void add_joint(inout newton e, uint j, bool is_b, vec3 dpa, vec3 va, vec3 dpb, v
 }
 #endif
 
-void add_item(inout newton e, item it, vec3 my_dp, vec3 my_v)
+void add_item(inout body_sums e, item it, vec3 my_dp, vec3 my_v)
 {
     bool is_b = block_is_b(it.entry);
 #ifdef TB_BLOCK_JOINTS
@@ -344,7 +412,12 @@ void newton_step(newton e, uint i, tb_gpu_solver_body me, out vec3 my_dp, out ve
 {
     add_inertia(e, i, me, block_h());
     // [A B; B^T D] [x; y] = [gl; ga] by the Schur complement of A.
-    mat3 Ai = inverse(e.A), Bt = transpose(e.B);
+#ifdef TB_BLOCK_JOINTS
+    mat3 Ai = inverse(e.A);
+#else
+    mat3 Ai = mat3(1.0 / e.A[0][0]);   // contacts and inertia alone: A = a I (point_sums)
+#endif
+    mat3 Bt = transpose(e.B);
     mat3 S = e.D - Bt * Ai * e.B;
     vec3 y = inverse(S) * (e.ga - Bt * (Ai * e.gl));
     vec3 x = Ai * (e.gl - e.B * y);
@@ -381,7 +454,7 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     tb_gpu_solver_body me = solver_bodies[i];
     vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
     // The first pass's points stay in registers for the multipliers' update below.
-    newton e = no_newton();
+    body_sums e = no_body_sums();
     item kept;
     bool has_kept = lane < items;
     if (has_kept) {
@@ -390,9 +463,9 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     }
     for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
         add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
-    e = lanes_sum(e);
+    newton sums = lanes_sum(e);
     if (!valid) return;
-    move_body(e, i, me, lane, my_dp, my_v);
+    move_body(sums, i, me, lane, my_dp, my_v);
     // The multipliers of the contacts whose other body has already moved are updated here,
     // by the last of their bodies to move, so no pass of its own after the sweep needs a
     // dispatch and a read of every contact.
@@ -449,11 +522,10 @@ void solve_tail()
         uint i = listed.x, first = listed.y, items = listed.z;
         tb_gpu_solver_body me = solver_bodies[i];
         vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
-        newton e = no_newton();
+        body_sums e = no_body_sums();
         for (uint at = lane; at < items; at += lanes)
             add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
-        e = workgroup_sum(e);
-        move_body(e, i, me, lane, my_dp, my_v);
+        move_body(workgroup_sum(newton_of(e)), i, me, lane, my_dp, my_v);
         uint order = uint(TB_MAX_COLOURS) + t;
         for (uint at = lane; at < items; at += lanes)
             update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
