@@ -5,9 +5,9 @@
 // colour[c].x bodies, BLOCK_LANES_OF(push.args.x) threads each (push.args.x: the lanes of
 // the sweep the host recorded), in workgroups of TB_SOLVER_WORKGROUP_SIZE; solver.x = the
 // colours in use (the highest + 1). A body coloured beyond the colours the
-// host recorded sweeps for (params.capacity.z), or left uncoloured while it recorded fewer
-// than TB_MAX_COLOURS, abandons the step (TB_ABORT_COLOURS): the host records more rounds
-// and runs it again. With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the
+// host recorded sweeps for (params.capacity.z) abandons the step (TB_ABORT_COLOURS), and
+// so does one left uncoloured by the recorded colouring rounds while the host recorded
+// fewer than TB_MAX_COLOURS (TB_ABORT_ROUNDS): the host records more and runs it again. With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the
 // tail (list.comp), solved one at a time after the colours.
 #include "block.glsl"
 
@@ -33,6 +33,6 @@ void main()
         if (counters.colour[c].x > 0u) used = c + 1u;
     counters.solver.x = used;
     bool short_of_colours = params.capacity.z < uint(TB_MAX_COLOURS);
-    if ((short_of_colours && counters.solver.y > 0u) || used > params.capacity.z)
-        atomicOr(counters.state.x, TB_ABORT_COLOURS);
+    if (used > params.capacity.z) atomicOr(counters.state.x, TB_ABORT_COLOURS);
+    if (short_of_colours && counters.solver.y > 0u) atomicOr(counters.state.x, TB_ABORT_ROUNDS);
 }

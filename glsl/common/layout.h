@@ -123,6 +123,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_ABORT_COLOURS        TB_U(2)   /* constraints (or, for the block solver, bodies)
                                              left uncoloured by the recorded rounds */
 #define TB_ABORT_EVENTS         TB_U(4)   /* more contact events than the event capacity */
+#define TB_ABORT_ROUNDS         TB_U(8)   /* the block solver: bodies left uncoloured by the
+                                             recorded colouring rounds, within the recorded
+                                             colours (the host records more rounds) */
 
 /* Graph colouring: at most this many colours (rounds). Claims pack the round into the top
  * bits and a permutation of the constraint index into the low TB_COLOUR_INDEX_BITS. */
@@ -251,7 +254,8 @@ TB_STRUCT(tb_gpu_counters) {
                                  coloured ones), z batches (subgroup-wide), w contact points */
     TB_UVEC4 colouring;       /* x y the lengths of colour work lists 0 and 1, z the constraints
                                  left to solve_tail (listed in work list 0; the block solver:
-                                 the bodies of its tail), w unused */
+                                 the bodies of its tail), w the block solver: 1 + the last
+                                 colouring round that coloured a body (block/list) */
     TB_UVEC4 colour[TB_MAX_COLOURS];          /* x constraints of the colour, y first index in the
                                                  colour list, z batches before the colour, w unused */
     TB_UVEC4 colour_dispatch[TB_MAX_COLOURS]; /* xyz: VkDispatchIndirectCommand over the colour */

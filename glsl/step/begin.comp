@@ -16,6 +16,7 @@ void main()
         counters.grid = uvec4(0u, 0u, params.counts.x, 0u);
         counters.solver = uvec4(0u);
         counters.hull_sat = uvec4(0u);
+        counters.colouring.w = 0u;
         counters.events.x = counters.events.y;   // no event of an abandoned attempt stays
     }
     for (uint k = t; k < TB_ROUND_KINDS; k += gl_WorkGroupSize.x)

@@ -218,7 +218,7 @@ static tb_result record_tail_list(const tb_block_solver* s, tb_pass_list* list,
 
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
-                                    uint32_t colours, uint32_t lanes)
+                                    uint32_t colours, uint32_t rounds, uint32_t lanes)
 {
     tb_gpu_ptr no_total = { 0 };
     tb_result r = per_body(s, list, s->reset, counters, 0);
@@ -229,7 +229,8 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     if (!r) r = per_pair(s, list, s->fill, counters);
     if (!r && lists->joint_capacity) r = per_joint(s, list, s->joint_fill, lists->joint_capacity);
     if (!r) r = per_body(s, list, s->sort, counters, 0);
-    uint32_t rounds = tb_block_colouring_rounds(colours);
+    uint32_t all = tb_block_colouring_rounds(colours);
+    if (rounds == 0 || rounds > all) rounds = all;
     for (uint32_t round = 0; round < rounds && !r; round++)
         r = per_body(s, list, s->colour, counters, round);
     if (!r) r = per_body(s, list, s->list, counters, 0);

@@ -11,6 +11,8 @@
 #define BLOCK_ROUNDS_SPARE 1u /* the block solver's: each is a dispatch in every one of its
                                  many sweeps, where the soft step's colours have batches */
 #define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
+#define BLOCK_ROUNDS_ROOM 2u /* the block solver's colouring rounds recorded beyond those a
+                                step used; re-recorded fewer once twice this go unused */
 #define MAX_REDO 16
 /* Steps in one submission at the most: tb_world_step_n's n steps go in batches of this
  * many (a submission lists each step's command buffer). TUMBLE_STEPS_PER_SUBMIT=N (1 to
@@ -152,7 +154,9 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
         uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
     }
-    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS)))
+    if (!r && (c->state.x & TB_ABORT_ROUNDS)) w->block_rounds = 0;
+    if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS |
+                              TB_ABORT_ROUNDS)))
         r = tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU abandoned a step for an unknown reason "
                     "(flags %#x)", c->state.x);
     w->step_built = 0;
@@ -173,6 +177,25 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
         w->colour_rounds = rounds;
         w->step_built = 0;
     }
+}
+
+/* The block solver's colouring: its rounds are dispatches over every body, most of which
+ * colour nothing once the bodies are coloured (2 c + 8 are recorded for c colours, which a
+ * colouring seldom needs): record the rounds the last step used and a little room. A step
+ * that needs more leaves bodies uncoloured and is run again with them all
+ * (TB_ABORT_ROUNDS). With the tail recorded every round is kept: the bodies the rounds leave
+ * go to the tail, solved one at a time. */
+static void fit_block_rounds(tb_world* w, const tb_gpu_counters* c)
+{
+    if (!w->block_solver) return;
+    uint32_t want = c->colouring.w + BLOCK_ROUNDS_ROOM;
+    uint32_t all = tb_block_colouring_rounds(w->colour_rounds);
+    uint32_t recorded = w->block_rounds ? w->block_rounds : all;
+    if (w->colour_rounds == TB_MAX_COLOURS) want = 0;
+    else if (want + BLOCK_ROUNDS_ROOM > recorded || want >= all) return;
+    if (want == w->block_rounds) return;
+    w->block_rounds = want;
+    w->step_built = 0;
 }
 
 /* The block solver's lanes a body for the bodies and contact points of the last step. */
@@ -221,6 +244,7 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     if (!r && c->state.x) r = grow_for(w, c);
     else if (!r) {
         fit_colour_rounds(w, c);
+        fit_block_rounds(w, c);
         fit_block_lanes(w, c);
         fit_block_fused(w);
     }

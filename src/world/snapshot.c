@@ -416,6 +416,7 @@ tb_result tb_world_load(tb_world* w, const void* data, size_t size)
     w->steps = h.steps;
     w->body_set_version = h.body_set_version;
     w->colour_rounds = h.colour_rounds;
+    w->block_rounds = 0;   /* this world's own steps find how few it needs */
     w->block_lanes = h.block_lanes;
     w->isolated_bodies = h.isolated_bodies;
     w->guard_seen = h.guard_seen;

@@ -171,7 +171,8 @@ static void block_colour_stage(builder* b)
     if (!b->r && lists.joint_capacity)
         b->r = tb_block_prepare_joints(&w->block, !w->block_fused);
     if (!b->r) b->r = tb_block_record_colouring(&w->block, &b->list, b->counters, &lists,
-                                                w->colour_rounds, block_sweep_lanes(w));
+                                                w->colour_rounds, w->block_rounds,
+                                                block_sweep_lanes(w));
     end_stage(b, "solver/colour");
 }
 
