@@ -8,11 +8,12 @@
 
 #define MIN_COLOUR_ROUNDS 4u
 #define ROUNDS_SPARE 2u      /* rounds recorded beyond the colours a step used */
-#define BLOCK_ROUNDS_SPARE 1u /* the block solver's: each is a dispatch in every one of its
-                                 many sweeps, where the soft step's colours have batches */
 #define SHRINK_SLACK 3u      /* re-record only when more rounds than this go unused */
-#define BLOCK_ROUNDS_ROOM 2u /* the block solver's colouring rounds recorded beyond those a
-                                step used; re-recorded fewer once twice this go unused */
+#define BLOCK_SHRINK_AFTER 60u /* the block solver's colours: a few unused are given up only
+                                  after this many runs of steps in a row used fewer */
+/* The block solver's colouring rounds recorded beyond the `used` of the last step (a
+ * step's rounds go up and down by a few); re-recorded fewer once twice this go unused. */
+#define BLOCK_ROUNDS_ROOM(used) (2u + (used) / 4u)
 #define MAX_REDO 16
 /* Steps in one submission at the most: tb_world_step_n's n steps go in batches of this
  * many (a submission lists each step's command buffer). TUMBLE_STEPS_PER_SUBMIT=N (1 to
@@ -151,8 +152,12 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
     }
     if (!r && (c->state.x & TB_ABORT_EVENTS)) r = tb_events_grow(w, c->events.x);
     if (!r && (c->state.x & TB_ABORT_COLOURS)) {
+        /* The block solver records the colours the step used (solver.x counts them all). */
         uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
+        if (w->block_solver) rounds = c->solver.x > w->colour_rounds ? c->solver.x
+                                                                     : w->colour_rounds + 1;
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
+        w->block_colours_unused = 0;
     }
     if (!r && (c->state.x & TB_ABORT_ROUNDS)) w->block_rounds = 0;
     if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS |
@@ -171,12 +176,32 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 {
     uint32_t used = c->solver.x;
     if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
-    uint32_t spare = w->block_solver ? BLOCK_ROUNDS_SPARE : ROUNDS_SPARE;
-    uint32_t rounds = used + spare > MIN_COLOUR_ROUNDS ? used + spare : MIN_COLOUR_ROUNDS;
+    uint32_t rounds = used + ROUNDS_SPARE > MIN_COLOUR_ROUNDS ? used + ROUNDS_SPARE
+                                                             : MIN_COLOUR_ROUNDS;
     if (used + SHRINK_SLACK < w->colour_rounds && rounds < w->colour_rounds) {
         w->colour_rounds = rounds;
         w->step_built = 0;
     }
+}
+
+/* The block solver's colours: each is a dispatch in every one of its many sweeps (where
+ * the soft step's colours have batches), used or not. It records the colours the last step
+ * used, none spare (a step that needs one more is run again with it, TB_ABORT_COLOURS): far
+ * fewer used at once, a few fewer only once they went unused for BLOCK_SHRINK_AFTER runs
+ * in a row, so a pile whose count goes up and down by one is not run again each time. */
+static void fit_block_colours(tb_world* w, const tb_gpu_counters* c)
+{
+    uint32_t used = c->solver.x ? c->solver.x : 1;
+    if (w->colour_rounds == TB_MAX_COLOURS && c->solver.y) return;   /* the tail is in use */
+    if (used >= w->colour_rounds) {
+        w->block_colours_unused = 0;
+        return;
+    }
+    if (used + SHRINK_SLACK >= w->colour_rounds && ++w->block_colours_unused < BLOCK_SHRINK_AFTER)
+        return;
+    w->colour_rounds = used;
+    w->block_colours_unused = 0;
+    w->step_built = 0;
 }
 
 /* The block solver's colouring: its rounds are dispatches over every body, most of which
@@ -188,11 +213,11 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 static void fit_block_rounds(tb_world* w, const tb_gpu_counters* c)
 {
     if (!w->block_solver) return;
-    uint32_t want = c->colouring.w + BLOCK_ROUNDS_ROOM;
+    uint32_t room = BLOCK_ROUNDS_ROOM(c->colouring.w), want = c->colouring.w + room;
     uint32_t all = tb_block_colouring_rounds(w->colour_rounds);
     uint32_t recorded = w->block_rounds ? w->block_rounds : all;
     if (w->colour_rounds == TB_MAX_COLOURS) want = 0;
-    else if (want + BLOCK_ROUNDS_ROOM > recorded || want >= all) return;
+    else if (want + room > recorded || want >= all) return;
     if (want == w->block_rounds) return;
     w->block_rounds = want;
     w->step_built = 0;
@@ -243,7 +268,8 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     if (!r) r = tb_world_guard_check(w, c);
     if (!r && c->state.x) r = grow_for(w, c);
     else if (!r) {
-        fit_colour_rounds(w, c);
+        if (w->block_solver) fit_block_colours(w, c);
+        else fit_colour_rounds(w, c);
         fit_block_rounds(w, c);
         fit_block_lanes(w, c);
         fit_block_fused(w);

@@ -101,6 +101,7 @@ struct tb_world {
     uint32_t body_set_version;             ///< bodies created and destroyed so far
     int step_built;              ///< the graph holds the current step (rounds, capacities)
     uint32_t colour_rounds;      ///< colouring rounds recorded (grows when a step needs more)
+    uint32_t block_colours_unused; ///< runs of steps in a row that left a recorded colour unused
     uint32_t block_rounds;       ///< the block solver's colouring rounds recorded; 0: as many as
                                  ///< a colouring of colour_rounds colours may need
     uint32_t block_lanes;        ///< lanes a body in the block solver's sweeps (tb_block_lanes_for)
