@@ -229,8 +229,7 @@ tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list
     if (!r) r = per_pair(s, list, s->fill, counters);
     if (!r && lists->joint_capacity) r = per_joint(s, list, s->joint_fill, lists->joint_capacity);
     if (!r) r = per_body(s, list, s->sort, counters, 0);
-    uint32_t all = tb_block_colouring_rounds(colours);
-    if (rounds == 0 || rounds > all) rounds = all;
+    if (rounds == 0) rounds = tb_block_colouring_rounds(colours);
     for (uint32_t round = 0; round < rounds && !r; round++)
         r = per_body(s, list, s->colour, counters, round);
     if (!r) r = per_body(s, list, s->list, counters, 0);

@@ -125,11 +125,10 @@ uint32_t tb_block_lanes_for(uint32_t bodies, uint32_t contact_points, uint32_t c
 
 /// The contact list of every dynamic body and the colouring of the dynamic bodies:
 /// reset, count (and the joints' count, with lists->joint_capacity), scan, fill (and the
-/// joints' fill), sort, `rounds` colouring rounds (0, or more than
-/// tb_block_colouring_rounds(colours): that many instead), then the bodies listed by colour (their
-/// sweeps' dispatches sized for `lanes` lanes a body); with all TB_MAX_COLOURS, then the
-/// bodies the colouring left over listed, in body order, as the tail. `counters` is the
-/// buffer bound at TB_BIND_COUNTERS.
+/// joints' fill), sort, `rounds` colouring rounds (0: tb_block_colouring_rounds(colours)),
+/// then the bodies listed by colour (their sweeps' dispatches sized for `lanes` lanes a
+/// body); with all TB_MAX_COLOURS, then the bodies the colouring left over listed, in body
+/// order, as the tail. `counters` is the buffer bound at TB_BIND_COUNTERS.
 tb_result tb_block_record_colouring(const tb_block_solver* s, tb_pass_list* list,
                                     VkBuffer counters, const tb_block_lists* lists,
                                     uint32_t colours, uint32_t rounds, uint32_t lanes);

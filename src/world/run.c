@@ -159,7 +159,16 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
         w->block_colours_unused = 0;
     }
-    if (!r && (c->state.x & TB_ABORT_ROUNDS)) w->block_rounds = 0;
+    if (!r && (c->state.x & TB_ABORT_ROUNDS)) {
+        /* Half as many again as the step had (a colouring of few colours may need more
+         * than tb_block_colouring_rounds gives them). */
+        uint32_t had = w->block_rounds ? w->block_rounds
+                                       : tb_block_colouring_rounds(w->colour_rounds);
+        uint32_t most = tb_block_colouring_rounds(TB_MAX_COLOURS);
+        uint32_t rounds = had + had / 2 + 1;
+        w->block_rounds = rounds < most ? rounds : most;
+        if (had >= most) w->colour_rounds = TB_MAX_COLOURS;   /* the tail takes the rest */
+    }
     if (!r && !(c->state.x & (TB_ABORT_PAIRS | TB_ABORT_COLOURS | TB_ABORT_EVENTS |
                               TB_ABORT_ROUNDS)))
         r = tb_fail(&w->diag, TB_ERROR_DEVICE, "the GPU abandoned a step for an unknown reason "
@@ -217,7 +226,7 @@ static void fit_block_rounds(tb_world* w, const tb_gpu_counters* c)
     uint32_t all = tb_block_colouring_rounds(w->colour_rounds);
     uint32_t recorded = w->block_rounds ? w->block_rounds : all;
     if (w->colour_rounds == TB_MAX_COLOURS) want = 0;
-    else if (want + room > recorded || want >= all) return;
+    else if (want + room > recorded) return;
     if (want == w->block_rounds) return;
     w->block_rounds = want;
     w->step_built = 0;
