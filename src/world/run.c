@@ -13,7 +13,7 @@
                                   after this many runs of steps in a row used fewer */
 /* The block solver's colouring rounds recorded beyond the `used` of the last step (a
  * step's rounds go up and down by a few); re-recorded fewer once twice this go unused. */
-#define BLOCK_ROUNDS_ROOM(used) (2u + (used) / 4u)
+#define BLOCK_ROUNDS_ROOM(used) (4u + (used) / 4u)
 #define MAX_REDO 16
 /* Steps in one submission at the most: tb_world_step_n's n steps go in batches of this
  * many (a submission lists each step's command buffer). TUMBLE_STEPS_PER_SUBMIT=N (1 to
@@ -152,20 +152,23 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
     }
     if (!r && (c->state.x & TB_ABORT_EVENTS)) r = tb_events_grow(w, c->events.x);
     if (!r && (c->state.x & TB_ABORT_COLOURS)) {
-        /* The block solver records the colours the step used (solver.x counts them all). */
+        /* The block solver records the colours the step used (solver.x counts them all) and
+         * one more, as a count that rose may rise again (a pile landing); fit_block_colours
+         * gives it up once it has gone unused a while. */
         uint32_t rounds = w->colour_rounds + w->colour_rounds / 2;
-        if (w->block_solver) rounds = c->solver.x > w->colour_rounds ? c->solver.x
-                                                                     : w->colour_rounds + 1;
+        if (w->block_solver) rounds = (c->solver.x > w->colour_rounds ? c->solver.x
+                                                                      : w->colour_rounds) + 1;
         w->colour_rounds = rounds < TB_MAX_COLOURS ? rounds : TB_MAX_COLOURS;
         w->block_colours_unused = 0;
     }
     if (!r && (c->state.x & TB_ABORT_ROUNDS)) {
-        /* Half as many again as the step had (a colouring of few colours may need more
-         * than tb_block_colouring_rounds gives them). */
+        /* Twice as many as the step had (a round is one dispatch, a step run again a whole
+         * step; a colouring of few colours may need more than tb_block_colouring_rounds
+         * gives them). */
         uint32_t had = w->block_rounds ? w->block_rounds
                                        : tb_block_colouring_rounds(w->colour_rounds);
         uint32_t most = tb_block_colouring_rounds(TB_MAX_COLOURS);
-        uint32_t rounds = had + had / 2 + 1;
+        uint32_t rounds = 2 * had;
         w->block_rounds = rounds < most ? rounds : most;
         if (had >= most) w->colour_rounds = TB_MAX_COLOURS;   /* the tail takes the rest */
     }
@@ -195,9 +198,10 @@ static void fit_colour_rounds(tb_world* w, const tb_gpu_counters* c)
 
 /* The block solver's colours: each is a dispatch in every one of its many sweeps (where
  * the soft step's colours have batches), used or not. It records the colours the last step
- * used, none spare (a step that needs one more is run again with it, TB_ABORT_COLOURS): far
- * fewer used at once, a few fewer only once they went unused for BLOCK_SHRINK_AFTER runs
- * in a row, so a pile whose count goes up and down by one is not run again each time. */
+ * used, none spare (a step that needs more is run again with them and one spare,
+ * TB_ABORT_COLOURS): far fewer used at once, a few fewer only once they went unused for
+ * BLOCK_SHRINK_AFTER runs in a row, so a pile whose count goes up and down by one is not
+ * run again each time. */
 static void fit_block_colours(tb_world* w, const tb_gpu_counters* c)
 {
     uint32_t used = c->solver.x ? c->solver.x : 1;
