@@ -7,8 +7,9 @@
 // colours in use (the highest + 1). A body coloured beyond the colours the
 // host recorded sweeps for (params.capacity.z) abandons the step (TB_ABORT_COLOURS), and
 // so does one left uncoloured by the recorded colouring rounds while the host recorded
-// fewer than TB_MAX_COLOURS (TB_ABORT_ROUNDS): the host records more and runs it again. With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the
-// tail (list.comp), solved one at a time after the colours.
+// fewer than TB_MAX_COLOURS (TB_ABORT_ROUNDS): the host records more and runs it again.
+// With all TB_MAX_COLOURS recorded, the bodies left uncoloured go to the tail (list.comp),
+// solved one at a time after the colours.
 #include "block.glsl"
 
 layout(push_constant) uniform Push { tb_gpu_push push; };

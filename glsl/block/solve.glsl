@@ -189,12 +189,6 @@ void add_point(inout body_sums e, block_point q, bool is_b, vec3 dpa, vec3 va, v
 
 // The sums over groups of `lanes` neighbouring lanes (a power of two), by a butterfly of
 // shuffles: every lane of a group ends with the same sum, bit for bit.
-float butterfly_sum(float v, uint lanes)
-{
-    for (uint m = lanes >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
-    return v;
-}
-
 vec3 butterfly_sum(vec3 v, uint lanes)
 {
     for (uint m = lanes >> 1; m > 0u; m >>= 1) v += subgroupShuffleXor(v, m);
@@ -214,17 +208,6 @@ newton butterfly_sum(newton e, uint lanes)
     e.gl = butterfly_sum(e.gl, lanes);
     e.ga = butterfly_sum(e.ga, lanes);
     return e;
-}
-
-point_sums butterfly_sum(point_sums s, uint lanes)
-{
-    s.k = butterfly_sum(s.k, lanes);
-    s.kr = butterfly_sum(s.kr, lanes);
-    s.d_diagonal = butterfly_sum(s.d_diagonal, lanes);
-    s.d_off = butterfly_sum(s.d_off, lanes);
-    s.gl = butterfly_sum(s.gl, lanes);
-    s.ga = butterfly_sum(s.ga, lanes);
-    return s;
 }
 
 // The point sums over the TB_BLOCK_LANES lanes of a body without a butterfly of each of
@@ -293,7 +276,7 @@ newton lanes_sum(newton e)
 
 newton lanes_sum(point_sums s)
 {
-    if (BLOCK_LANES != uint(TB_BLOCK_LANES)) return newton_of(butterfly_sum(s, BLOCK_LANES));
+    if (BLOCK_LANES != uint(TB_BLOCK_LANES)) return butterfly_sum(newton_of(s), BLOCK_LANES);
     return newton_of(scatter_gather_sum(s));
 }
 

@@ -133,6 +133,13 @@ static tb_result submit_steps(tb_world* w, uint32_t n)
     return r;
 }
 
+/* The block solver's colouring rounds the step records (block_rounds, 0: as many as a
+ * colouring of its colours may need, tb_block_record_colouring). */
+static uint32_t block_rounds_recorded(const tb_world* w)
+{
+    return w->block_rounds ? w->block_rounds : tb_block_colouring_rounds(w->colour_rounds);
+}
+
 /* A step the GPU abandoned: grow what overflowed so the step fits when run again. Pairs get
  * a quarter more than needed (at least a quarter more than before), within the device. */
 static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
@@ -165,8 +172,7 @@ static tb_result grow_for(tb_world* w, const tb_gpu_counters* c)
         /* Twice as many as the step had (a round is one dispatch, a step run again a whole
          * step; a colouring of few colours may need more than tb_block_colouring_rounds
          * gives them). */
-        uint32_t had = w->block_rounds ? w->block_rounds
-                                       : tb_block_colouring_rounds(w->colour_rounds);
+        uint32_t had = block_rounds_recorded(w);
         uint32_t most = tb_block_colouring_rounds(TB_MAX_COLOURS);
         uint32_t rounds = 2 * had;
         w->block_rounds = rounds < most ? rounds : most;
@@ -225,12 +231,9 @@ static void fit_block_colours(tb_world* w, const tb_gpu_counters* c)
  * go to the tail, solved one at a time. */
 static void fit_block_rounds(tb_world* w, const tb_gpu_counters* c)
 {
-    if (!w->block_solver) return;
     uint32_t room = BLOCK_ROUNDS_ROOM(c->colouring.w), want = c->colouring.w + room;
-    uint32_t all = tb_block_colouring_rounds(w->colour_rounds);
-    uint32_t recorded = w->block_rounds ? w->block_rounds : all;
     if (w->colour_rounds == TB_MAX_COLOURS) want = 0;
-    else if (want + room > recorded) return;
+    else if (want + room > block_rounds_recorded(w)) return;
     if (want == w->block_rounds) return;
     w->block_rounds = want;
     w->step_built = 0;
@@ -281,9 +284,12 @@ static tb_result run_steps(tb_world* w, float dt, uint32_t n, uint32_t* done)
     if (!r) r = tb_world_guard_check(w, c);
     if (!r && c->state.x) r = grow_for(w, c);
     else if (!r) {
-        if (w->block_solver) fit_block_colours(w, c);
-        else fit_colour_rounds(w, c);
-        fit_block_rounds(w, c);
+        if (w->block_solver) {
+            fit_block_colours(w, c);
+            fit_block_rounds(w, c);
+        } else {
+            fit_colour_rounds(w, c);
+        }
         fit_block_lanes(w, c);
         fit_block_fused(w);
     }
