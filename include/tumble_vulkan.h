@@ -47,7 +47,8 @@ typedef struct tb_vulkan_bodies {
     VkBuffer position;          ///< vec4: xyz centre, w inverse mass
     VkBuffer rotation;          ///< vec4 quaternion
     VkBuffer linear_velocity;   ///< vec4: xyz, w damping
-    VkBuffer info;              ///< uvec4: x shape index, y TB_BODY_FLAG_*
+    VkBuffer info;              ///< uvec4: x shape index, y TB_BODY_FLAG_*, z the body's
+                                ///< rank in the joint graph's colouring, w reserved
     VkBuffer aabb_min, aabb_max;
     VkBuffer shapes;            ///< tb_gpu_shape[shape_slots]
     uint32_t slots;             ///< body slots in use (dead ones included)

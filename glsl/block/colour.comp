@@ -26,8 +26,19 @@ uint priority(uint i)
     return (min(block_fill[i], 255u) << 24) | (x >> 8);
 }
 
-bool beats(uint a, uint pa, uint b)
+// A body's rank in the joint graph's colouring (body_info.z, src/world/joint_ranks.c): the
+// first priority, lower ranks first, so a net of joints colours as the host coloured it (a
+// two-colourable net in two colours, not the five or six of hashed priorities). Every body
+// has rank 0 in a world without joints, whose colouring is the same as before ranks.
+uint rank_of(uint i)
 {
+    return params.joint_info.x != 0u ? body_info[i].z : 0u;
+}
+
+bool beats(uint a, uint ra, uint pa, uint b)
+{
+    uint rb = rank_of(b);
+    if (ra != rb) return ra < rb;
     uint pb = priority(b);
     return pa > pb || (pa == pb && a > b);
 }
@@ -37,7 +48,7 @@ void main()
     uint i = body_thread_index();
     uint round = push.args.x;
     if (i >= params.counts.x || step_aborted() || body_colour[i] != TB_BLOCK_NO_COLOUR) return;
-    uint mine = priority(i);
+    uint mine = priority(i), my_rank = rank_of(i);
     uvec2 taken = uvec2(0u);
     uint first = block_start[i], n = block_fill[i];
     for (uint k = 0u; k < n; k++) {
@@ -47,7 +58,7 @@ void main()
         uint word = body_colour[o];
         if (word == TB_BLOCK_NOT_SOLVED) continue;
         if (word == TB_BLOCK_NO_COLOUR || (word >> 8) == round) {
-            if (!beats(i, mine, o)) return;
+            if (!beats(i, my_rank, mine, o)) return;
             continue;
         }
         uint c = word & 0xffu;

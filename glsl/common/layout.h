@@ -34,7 +34,9 @@ typedef struct tb_gpu_uvec4 { uint32_t x, y, z, w; } tb_gpu_uvec4;
 #define TB_BIND_BODY_LINVEL     3  /* vec4[]: xyz linear velocity (m/s), w linear damping (1/s) */
 #define TB_BIND_BODY_ANGVEL     4  /* vec4[]: xyz angular velocity (rad/s), w angular damping (1/s) */
 #define TB_BIND_BODY_INV_INERTIA 5 /* vec4[]: xyz inverse principal inertia, body frame; w gravity scale */
-#define TB_BIND_BODY_INFO       6  /* uvec4[]: x shape index, y TB_BODY_FLAG_*, z w reserved */
+#define TB_BIND_BODY_INFO       6  /* uvec4[]: x shape index, y TB_BODY_FLAG_*, z its rank in
+                                       the joint graph's colouring (src/world/joint_ranks.c),
+                                       w reserved */
 #define TB_BIND_BODY_AABB_MIN   7  /* vec4[]: world AABB minimum corner, w unused */
 #define TB_BIND_BODY_AABB_MAX   8  /* vec4[]: world AABB maximum corner, w unused */
 #define TB_BIND_SHAPES          9  /* tb_gpu_shape[] */

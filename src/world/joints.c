@@ -42,6 +42,7 @@ tb_result tb_world_joints_add(tb_world* w, const tb_joint_def* defs, const uint3
         uint32_t slot = tb_joints_add(&w->joints, &defs[i], a[i], b[i]);
         out[i] = tb_joint_id_of_slot(w, slot);
     }
+    if (count) w->joint_ranks_dirty = 1;
     /* The step's joint passes cover the capacity they were recorded for. */
     if (count && w->joint_passes != w->joints.capacity) w->step_built = 0;
     return TB_OK;
@@ -50,14 +51,17 @@ tb_result tb_world_joints_add(tb_world* w, const tb_joint_def* defs, const uint3
 void tb_world_joint_remove(tb_world* w, uint32_t slot)
 {
     tb_joints_remove(&w->joints, slot);
+    w->joint_ranks_dirty = 1;
 }
 
 void tb_world_joints_of_body_remove(tb_world* w, uint32_t body_slot)
 {
     for (uint32_t s = 0; s < w->joints.slots.used; s++) {
         const tb_joint_record* j = &w->joints.records[s];
-        if (j->alive && (j->body_a == body_slot || j->body_b == body_slot))
+        if (j->alive && (j->body_a == body_slot || j->body_b == body_slot)) {
             tb_joints_remove(&w->joints, s);
+            w->joint_ranks_dirty = 1;
+        }
     }
 }
 

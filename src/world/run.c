@@ -65,6 +65,7 @@ static void write_params(tb_world* w, float dt)
 static tb_result record_transfer(tb_world* w, float dt, uint32_t mask, const void** landing)
 {
     tb_result prepared = tb_joints_prepare(&w->joints);
+    if (!prepared) prepared = tb_world_rank_joint_bodies(w);
     if (prepared) return prepared;
     VkDeviceSize shape_bytes = w->shapes_dirty ? w->shape_slots.used * sizeof(tb_gpu_shape) : 0;
     VkDeviceSize bytes = shape_bytes + tb_hull_table_upload_bytes(&w->narrowphase) +

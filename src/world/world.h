@@ -142,6 +142,8 @@ struct tb_world {
     tb_joints joints;
     uint32_t joint_passes;       ///< the joint capacity the step's joint passes were recorded
                                  ///< for (0: none recorded)
+    int joint_ranks_dirty;       ///< the joint graph changed: rank its bodies again
+                                 ///< (joint_ranks.c) before the next submission
     uint32_t bouncy_shapes;      ///< shapes ever made with restitution > 0: the block solver
                                  ///< records its restitution pass once there is one
     uint32_t hull_shapes;        ///< live TB_SHAPE_HULL shapes: the step records the hull pass
@@ -270,6 +272,12 @@ void tb_world_joint_remove(tb_world* w, uint32_t slot);
 void tb_world_joints_of_body_remove(tb_world* w, uint32_t body_slot);
 /// Ids of live joints in slot order (at most `capacity`); returns how many there are.
 uint32_t tb_world_joints_ids(const tb_world* w, tb_joint_id* out, uint32_t capacity);
+
+/* joint_ranks.c: the joint graph's colouring, the GPU colouring's first priority. */
+
+/// When the joint graph changed: each body's colour in a greedy breadth-first colouring of
+/// the joints between dynamic bodies into body_info.z (0 without joints), for upload.
+tb_result tb_world_rank_joint_bodies(tb_world* w);
 
 /* readback.c */
 tb_result tb_world_contacts(tb_world* w, tb_contact* out, uint32_t capacity, uint32_t* count);

@@ -535,6 +535,10 @@ static int run_bench(tb_world* world, const scene* sc, const options* o, samples
         checks->items[checks->count].key = "dispatches";
         checks->items[checks->count++].value = recorded_dispatches;
     }
+    if (!code && checks->count < SCENE_MAX_CHECKS) {   /* colours the last step's sweeps ran */
+        checks->items[checks->count].key = "colours";
+        checks->items[checks->count++].value = st.colour_count;
+    }
     if (!code && checks->count < SCENE_MAX_CHECKS) {   /* steps run again (a buffer grew, or
                                                           more colours were needed) */
         checks->items[checks->count].key = "redone";
