@@ -2,7 +2,8 @@
  * net of spheres on ball joints and a plank bridge on hinges under a dropped load, whose
  * joints hold more conditions than their bodies have freedoms, stay still and closed over
  * hundreds of steps (both once shook themselves apart: a joint starts its step with a
- * smaller share of last step's multipliers and stiffness than a contact, block/joint_start). */
+ * smaller share of last step's multipliers and stiffness than a contact, block/joint_start),
+ * and the net sweeps in the two colours its joint graph needs. */
 #include "harness.h"
 
 #include <string.h>
@@ -48,6 +49,26 @@ static void test_net_hangs_still(void** state)
     assert_true(sag > -1e-3 && sag < 1e-3);
 }
 
+/* The 10 x 10 net, two-colourable, sweeps in two colours: the host's breadth-first colouring
+ * of the joint graph (src/world/joint_ranks.c) orders the GPU's colouring. */
+static void test_net_colours_in_two(void** state)
+{
+    (void)state;
+    const scene* sc = scene_find("joint_grid");
+    assert_non_null(sc);
+    tb_world* w = th_world_create(NULL);
+    scene_params params = { 100, 1 };
+    scene_instance* inst = NULL;
+    th_assert_ok(sc->build(w, &params, &inst));
+    th_assert_ok(tb_world_step_n(w, sc->dt, 10));
+    tb_world_stats st;
+    th_assert_ok(tb_world_get_stats(w, &st));
+    print_message("  net 10 x 10: %u colours\n", st.colour_count);
+    assert_int_equal(st.colour_count, 2);
+    sc->destroy(inst);
+    th_world_destroy(w);
+}
+
 /* A bridge of 40 planks takes a load 10 times a plank dropped from 1 m and carries it for
  * 240 steps: its hinges stay closed within 2 mm and aligned within 0.01 rad, and it sags
  * no further than 0.5 m below where it started (it twisted 0.3 rad by step 200 before). */
@@ -70,6 +91,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_net_hangs_still),
+        cmocka_unit_test(test_net_colours_in_two),
         cmocka_unit_test(test_bridge_carries_a_load),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
