@@ -179,17 +179,25 @@ void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout floa
 }
 
 // A spring of frequency `hertz` and damping ratio `damping` on the bodies' effective mass
-// (or moment, unit h^2) along row r, whose value is the coordinate's distance from where the
-// spring pulls to and `moved` its change over the step so far; stepped implicitly, its
-// stiffness k and damping c over the step act as k + c / dt: a row of multiplier f at
-// C = 0 with that stiffness.
-void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
-                      float damping, vec3 rb)
+// (or moment, unit h^2) along a row whose value C is the coordinate's distance from where
+// the spring pulls to and `moved` its change over the step so far; stepped implicitly, its
+// stiffness k and damping c over the step act as k + c / dt: a row of multiplier `lambda`
+// at C = 0 with that `stiffness`.
+void joint_spring(float C, float moved, float unit, float hertz, float damping,
+                  out float lambda, out float stiffness)
 {
     float h = block_h(), omega = 6.2831853 * hertz;
     float mass = unit * h * h;
     float k = mass * omega * omega, c = 2.0 * mass * damping * omega;
-    float lambda = -(k * r.C + c * moved / h), stiffness = k + c / h;
+    lambda = -(k * C + c * moved / h);
+    stiffness = k + c / h;
+}
+
+void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
+                      float damping, vec3 rb)
+{
+    float lambda, stiffness;
+    joint_spring(r.C, moved, unit, hertz, damping, lambda, stiffness);
     r.C = 0.0;
     joint_apply(w, r, lambda, stiffness, unit, -1e30, 1e30, true, rb);
 }
@@ -214,13 +222,20 @@ void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float
         if (n < JOINT_START_ROWS) joint_states[w.joint].start_error[n >> 2][n & 3u] = r.C;
         return;
     }
-    if (w.soft_hertz > 0.0) {
+    // One joint_apply for both ways, so each row of a kind is one copy of it in the sweep.
+    bool soft = w.soft_hertz > 0.0;
+    float l = lambda, stiffness = k;
+    if (soft) {
         float moved = dot(r.la, w.dpa) + dot(r.aa, w.va) + dot(r.lb, w.dpb) + dot(r.ab, w.vb);
-        joint_spring_row(w, r, moved, unit, w.soft_hertz, w.soft_damping, rb);
-        return;
+        joint_spring(r.C, moved, unit, w.soft_hertz, w.soft_damping, l, stiffness);
+        r.C = 0.0;
+    } else if (w.hold_start) {
+        r.C -= joint_start_error(w.joint, n);
     }
-    if (w.hold_start) r.C -= joint_start_error(w.joint, n);
-    joint_apply(w, r, lambda, k, unit, -1e30, 1e30, true, rb);
+    joint_apply(w, r, l, stiffness, unit, -1e30, 1e30, true, rb);
+    if (soft) return;
+    lambda = l;
+    k = stiffness;
 }
 
 // The three point rows: the anchors meet.
@@ -290,14 +305,14 @@ void joint_limit_row(inout joint_work w, joint_row r, float lower, float upper,
     if (upper - lower < 1e-6) {
         r.C = q - lower;
         joint_hold(w, r, lambda, k, unit, rb);
-    } else if (q - lower < upper - q) {
-        r.C = q - lower;   // pushes q up: a force >= 0 along r
-        lambda = max(lambda, 0.0);
-        joint_apply(w, r, lambda, k, unit, 0.0, 1e30, held || r.C < 0.0, rb);
     } else {
-        r.C = q - upper;   // pushes q down: a force <= 0 along r
-        lambda = min(lambda, 0.0);
-        joint_apply(w, r, lambda, k, unit, -1e30, 0.0, held || r.C > 0.0, rb);
+        // The nearer side: from below it pushes q up (a force >= 0 along r), from above down.
+        bool below = q - lower < upper - q;
+        r.C = below ? q - lower : q - upper;
+        lambda = below ? max(lambda, 0.0) : min(lambda, 0.0);
+        bool pressed = below ? r.C < 0.0 : r.C > 0.0;
+        joint_apply(w, r, lambda, k, unit, below ? 0.0 : -1e30, below ? 1e30 : 0.0,
+                    held || pressed, rb);
     }
     if (w.dual && lambda != 0.0) engaged |= bit;
 }
@@ -570,24 +585,36 @@ void joint_record_start(uint j, tb_gpu_joint_state s)
     joint_rows(w, j, s, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
 }
 
-// The dual update of joint j once both bodies have moved in the sweep: new multipliers and
-// stiffnesses; after the last sweep also the force and torque it put on b, and whether
-// they broke it.
-void joint_dual(uint j, vec3 dpa, vec3 va, vec3 dpb, vec3 vb, bool last, bool hold_start)
+// What the sweep's work with a joint's rows starts from: a primal's are added to body
+// (is_b) b's or a's Newton blocks e (solve.glsl's newton, passed as its parts); a dual, once
+// both bodies have moved, updates the rows' multipliers and stiffnesses (joint_store).
+joint_work joint_work_of(bool dual, bool is_b, mat3 A, mat3 B, mat3 D, vec3 gl, vec3 ga,
+                         bool last, bool hold_start)
 {
-    joint_work w = joint_work_primal(false);
-    w.dual = true;
+    joint_work w = joint_work_primal(is_b);
+    w.dual = dual;
     w.last = last;
     w.hold_start = hold_start;
     w.growth = params.block.y;
-    tb_gpu_joint_state s = joint_states[j];
-    joint_rows(w, j, s, dpa, va, dpb, vb);
+    w.A = A;
+    w.B = B;
+    w.D = D;
+    w.gl = gl;
+    w.ga = ga;
+    return w;
+}
+
+// The dual's end for joint j, its rows taken into state s by work w: the new multipliers
+// and stiffnesses; after the last sweep also the force and torque it put on b, and
+// whether they broke it.
+void joint_store(uint j, tb_gpu_joint_state s, joint_work w)
+{
     if (!finite_all(s.linear) || !finite_all(s.angular) || !finite_all(s.axial)) return;
     joint_states[j].linear = s.linear;
     joint_states[j].angular = s.angular;
     joint_states[j].axial = s.axial;
     joint_states[j].info.z = s.info.z;
-    if (!last) return;
+    if (!w.last) return;
     joint_states[j].force = vec4(s.held_force.xyz + w.force, 0.0);
     joint_states[j].torque = vec4(s.held_torque.xyz + w.torque, 0.0);
     tb_gpu_joint jt = joints[j];

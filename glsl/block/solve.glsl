@@ -210,6 +210,12 @@ newton butterfly_sum(newton e, uint lanes)
     return e;
 }
 
+// The Newton blocks' sums over the BLOCK_LANES lanes of a body (a sweep with joints).
+newton lanes_sum(newton e)
+{
+    return butterfly_sum(e, BLOCK_LANES);
+}
+
 // The point sums over the TB_BLOCK_LANES lanes of a body without a butterfly of each of
 // the 16 numbers: a reduce-scatter and then an allgather. At each level of the
 // reduce-scatter a lane sends its partner the half of its numbers the partner keeps and
@@ -269,11 +275,6 @@ point_sums scatter_gather_sum(point_sums s)
 
 // The sums over the BLOCK_LANES lanes of a body; a sweep's subgroup narrower than the
 // shader's lanes (or a CPU device's one lane a body) adds them by the butterfly.
-newton lanes_sum(newton e)
-{
-    return butterfly_sum(e, BLOCK_LANES);
-}
-
 newton lanes_sum(point_sums s)
 {
     if (BLOCK_LANES != uint(TB_BLOCK_LANES)) return butterfly_sum(newton_of(s), BLOCK_LANES);
@@ -336,35 +337,10 @@ item item_of(uvec2 entry)
     return it;
 }
 
-#ifdef TB_BLOCK_JOINTS
-// A joint's rows in the Newton step of its body b (is_b) or a.
-void add_joint(inout newton e, uint j, bool is_b, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
-{
-    joint_work w = joint_work_primal(is_b);
-    w.hold_start = sweep_holds;
-    tb_gpu_joint_state s = joint_states[j];
-    joint_rows(w, j, s, dpa, va, dpb, vb);
-    e.A += w.A;
-    e.B += w.B;
-    e.D += w.D;
-    e.gl += w.gl;
-    e.ga += w.ga;
-}
-#endif
-
+#ifndef TB_BLOCK_JOINTS
 void add_item(inout body_sums e, item it, vec3 my_dp, vec3 my_v)
 {
-    bool is_b = block_is_b(it.entry);
-#ifdef TB_BLOCK_JOINTS
-    if (item_is_joint(it.entry)) {
-        // One call with the sides chosen, not one per side: the joints' rows are long, and
-        // lavapipe's compiler takes seconds for each copy.
-        add_joint(e, it.p, is_b, is_b ? it.dp : my_dp, is_b ? it.v : my_v,
-                  is_b ? my_dp : it.dp, is_b ? my_v : it.v);
-        return;
-    }
-#endif
-    if (is_b) {
+    if (block_is_b(it.entry)) {
         add_point(e, it.q, true, it.dp, it.v, my_dp, my_v);
     } else {
         add_point(e, it.q, false, my_dp, my_v, it.dp, it.v);
@@ -377,17 +353,50 @@ void add_item(inout body_sums e, item it, vec3 my_dp, vec3 my_v)
 void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
 {
     if (!block_moved_before(it.other_colour, order)) return;
-#ifdef TB_BLOCK_JOINTS
-    if (item_is_joint(it.entry)) {
-        bool is_b = block_is_b(it.entry);
-        joint_dual(it.p, is_b ? it.dp : my_dp, is_b ? it.v : my_v, is_b ? my_dp : it.dp,
-                   is_b ? my_v : it.v, last, sweep_holds);
-        return;
-    }
-#endif
     if (block_is_b(it.entry)) block_dual(it.p, it.k, it.q, it.dp, it.v, my_dp, my_v, last);
     else block_dual(it.p, it.k, it.q, my_dp, my_v, it.dp, it.v, last);
 }
+#else
+// A joint's rows, of its body b (is_b) or a and the other at dpa, va, dpb, vb: in the
+// primal added to the body's Newton step e, in the dual (once both bodies have moved)
+// their multipliers updated.
+void joint_item(inout newton e, uint j, bool is_b, bool dual, vec3 dpa, vec3 va, vec3 dpb,
+                vec3 vb)
+{
+    joint_work w = joint_work_of(dual, is_b, e.A, e.B, e.D, e.gl, e.ga, sweep_is_last,
+                                 sweep_holds);
+    tb_gpu_joint_state s = joint_states[j];
+    joint_rows(w, j, s, dpa, va, dpb, vb);
+    if (dual) {
+        joint_store(j, s, w);
+        return;
+    }
+    e.A = w.A;
+    e.B = w.B;
+    e.D = w.D;
+    e.gl = w.gl;
+    e.ga = w.ga;
+}
+
+// List entry `entry` of the body (my_dp, my_v) at place `order` in the sweep: in the primal
+// (dual false) its rows go into the body's Newton step e; in the dual, if its other body
+// has already moved in this sweep (a static one, or one of an earlier place, block_order),
+// its multipliers are updated with both where the sweep leaves them.
+void sweep_item(inout newton e, uvec2 entry, uint order, bool dual, vec3 my_dp, vec3 my_v)
+{
+    if (dual && !block_moved_before(body_colour[entry.y], order)) return;
+    item it = item_of(entry);
+    bool is_b = block_is_b(it.entry);
+    vec3 dpa = is_b ? it.dp : my_dp, va = is_b ? it.v : my_v;
+    vec3 dpb = is_b ? my_dp : it.dp, vb = is_b ? my_v : it.v;
+    if (item_is_joint(it.entry))
+        joint_item(e, it.p, is_b, dual, dpa, va, dpb, vb);
+    else if (dual)
+        block_dual(it.p, it.k, it.q, dpa, va, dpb, vb, sweep_is_last);
+    else
+        add_point(e, it.q, is_b, dpa, va, dpb, vb);
+}
+#endif
 
 // Body i (state me) moves by the Newton step of its contacts' summed rows e and its
 // inertia: its displacement and turn since the step began, in my_dp and my_dq.
@@ -428,6 +437,7 @@ void move_body(newton e, uint i, tb_gpu_solver_body me, uint lane, out vec3 my_d
     my_v = rotation_vector(my_dq);
 }
 
+#ifndef TB_BLOCK_JOINTS
 // Body listed.x (its list: listed.y, listed.z entries), at place `order` in the sweep
 // (block_order), moves by one Newton step; the BLOCK_LANES lanes that share it call this
 // together, `valid` false on lanes without a body (beyond the colour's bodies).
@@ -457,6 +467,31 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     for (uint at = BLOCK_LANES + lane; at < items; at += BLOCK_LANES)
         update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
 }
+#else
+// Body listed.x as above, in a sweep with joints: a primal pass over its entries adds them
+// up, a dual pass updates their multipliers, and each is one call of sweep_item, so the
+// joints' rows are in the kernel twice, each copy specialised to its pass. No entry is kept
+// in registers across the body's step, whose state is read again for it. H200, the 100 x
+// 100 net of ball joints (joint_grid 10000): the sweeps took 1.10 ms a step with a call a
+// pass for the kept entry and another for the rest (four copies of the rows: 255
+// registers, 3 KB of spills a thread, a 920 KB kernel), 0.78 ms so (168 registers, no
+// spills, 394 KB), and 1.63 ms with a single call, the pass a variable (223 registers,
+// 305 KB: the rows no longer specialised); lavapipe compiles it in a quarter of the time.
+void solve_body(uvec4 listed, uint lane, bool valid, uint order)
+{
+    uint i = listed.x, first = listed.y, items = listed.z;
+    vec3 my_dp = solver_bodies[i].delta_position.xyz;
+    vec3 my_v = rotation_vector(solver_bodies[i].delta_rotation);
+    newton e = no_newton();
+    for (uint at = lane; at < items; at += BLOCK_LANES)
+        sweep_item(e, block_entries[first + at], order, false, my_dp, my_v);
+    newton sums = lanes_sum(e);
+    if (!valid) return;
+    move_body(sums, i, solver_bodies[i], lane, my_dp, my_v);
+    for (uint at = lane; at < items; at += BLOCK_LANES)
+        sweep_item(e, block_entries[first + at], order, true, my_dp, my_v);
+}
+#endif
 
 #ifdef TB_BLOCK_TAIL
 // The tail (block/solve_tail, one workgroup of TB_BLOCK_TAIL_WORKGROUP_SIZE): the bodies
@@ -505,13 +540,22 @@ void solve_tail()
         uint i = listed.x, first = listed.y, items = listed.z;
         tb_gpu_solver_body me = solver_bodies[i];
         vec3 my_dp = me.delta_position.xyz, my_v = rotation_vector(me.delta_rotation);
+        uint order = uint(TB_MAX_COLOURS) + t;
+#ifndef TB_BLOCK_JOINTS
         body_sums e = no_body_sums();
         for (uint at = lane; at < items; at += lanes)
             add_item(e, item_of(block_entries[first + at]), my_dp, my_v);
         move_body(workgroup_sum(newton_of(e)), i, me, lane, my_dp, my_v);
-        uint order = uint(TB_MAX_COLOURS) + t;
         for (uint at = lane; at < items; at += lanes)
             update_item(item_of(block_entries[first + at]), order, my_dp, my_v, last);
+#else
+        newton e = no_newton();
+        for (uint at = lane; at < items; at += lanes)
+            sweep_item(e, block_entries[first + at], order, false, my_dp, my_v);
+        move_body(workgroup_sum(e), i, me, lane, my_dp, my_v);
+        for (uint at = lane; at < items; at += lanes)
+            sweep_item(e, block_entries[first + at], order, true, my_dp, my_v);
+#endif
         memoryBarrierBuffer();
         barrier();
     }
