@@ -36,12 +36,13 @@ bool joint_has(tb_gpu_joint jt, uint flag)
     return (jt.info.z & flag) != 0u;
 }
 
-// The stiffness units of a joint's rows (N/m and N m/rad): its bodies' effective mass and
-// moment over dt^2, as a contact's (block_stiffness_unit).
-vec2 joint_units(tb_gpu_joint jt)
+// The stiffness units of a joint's rows (N/m and N m/rad): its bodies' (ab: a and b, as
+// tb_gpu_joint.info.xy) effective mass and moment over dt^2, as a contact's
+// (block_stiffness_unit).
+vec2 joint_units(uvec2 ab)
 {
     float h = block_h();
-    uint a = jt.info.x, b = jt.info.y;
+    uint a = ab.x, b = ab.y;
     float ma = block_dynamic(a) ? body_pos[a].w : 0.0;   // inverse masses
     float mb = block_dynamic(b) ? body_pos[b].w : 0.0;
     vec3 ia = block_dynamic(a) ? body_inv_inertia[a].xyz : vec3(0.0);
@@ -60,10 +61,10 @@ struct joint_pose {
     vec3 dpa, dpb; // and moved
 };
 
-joint_pose joint_pose_of(tb_gpu_joint jt, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
+joint_pose joint_pose_of(tb_gpu_joint jt, uvec2 ab, vec3 dpa, vec3 va, vec3 dpb, vec3 vb)
 {
     joint_pose p;
-    uint a = jt.info.x, b = jt.info.y;
+    uint a = ab.x, b = ab.y;
     vec4 qa = normalize(quat_mul(quat_of_rotation_vector(va), body_rot[a]));
     vec4 qb = normalize(quat_mul(quat_of_rotation_vector(vb), body_rot[b]));
     p.xa = body_pos[a].xyz + dpa;
@@ -238,35 +239,80 @@ void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float
     k = stiffness;
 }
 
+// Three hard equality rows along the world axes with one stiffness (state.w) and their
+// multipliers in state.xyz, of value C: the anchors' offset (`turn` false: the point rows,
+// the anchors meet) or the turn from A to B (`turn`: a weld's angular rows). Their Jacobians
+// are the axes, so they sum in closed form as a contact point's rows do (solve.glsl,
+// add_rows): sum_u k u u^T = k I, sum_u k u (r x u)^T = -k skew(r),
+// sum_u k (r x u)(r x u)^T = k (|r|^2 I - r r^T), the gradient the force f and its moment
+// r x f, where the row by row sums (joint_hold, joint_apply) took three outer products a
+// row. The same rows, values and updates as those, summed in another order.
+void joint_axes_rows(inout joint_work w, joint_pose p, vec3 C, bool turn, inout vec4 state,
+                     float unit)
+{
+    uint n = w.holds;
+    w.holds += 3u;
+    if (w.record) {
+        for (uint i = 0u; i < 3u; i++)
+            if (n + i < JOINT_START_ROWS) joint_states[w.joint].start_error[(n + i) >> 2][(n + i) & 3u] = C[i];
+        return;
+    }
+    vec3 lambda = state.xyz;
+    float k = state.w;
+    bool soft = w.soft_hertz > 0.0;
+    if (soft) {
+        // The rows' change over the step so far, and the spring's multipliers and stiffness.
+        vec3 moved = turn ? w.vb - w.va
+                          : (w.dpb + cross(w.vb, p.rb)) - (w.dpa + cross(w.va, p.ra));
+        float h = block_h(), omega = 6.2831853 * w.soft_hertz, mass = unit * h * h;
+        float ks = mass * omega * omega, c = 2.0 * mass * w.soft_damping * omega;
+        lambda = -(ks * C + c * moved / h);
+        k = ks + c / h;
+        C = vec3(0.0);
+    } else if (w.hold_start) {
+        C -= vec3(joint_start_error(w.joint, n), joint_start_error(w.joint, n + 1u),
+                  joint_start_error(w.joint, n + 2u));
+    }
+    vec3 f = lambda - k * C;
+    if (w.dual) {
+        if (turn) w.torque += f;
+        else w.force += f;   // the point rows' moment about b's anchor is none
+        if (soft) return;
+        float c = max(abs(C.x), max(abs(C.y), abs(C.z)));
+        state = vec4(f, max(k, min(k + w.growth * unit * c, params.block_joints.x * unit)));
+        return;
+    }
+    float sign = w.is_b ? 1.0 : -1.0;
+    float pushed = abs(f.x) + abs(f.y) + abs(f.z);
+    if (turn) {
+        w.ga -= sign * f;
+        w.D += (k + 0.5 * pushed) * mat3(1.0);   // joint_lock_rows's bend, 0.5
+        return;
+    }
+    vec3 r = w.is_b ? p.rb : p.ra;
+    vec3 r2 = r * r;
+    w.gl -= sign * f;
+    w.ga -= sign * cross(r, f);
+    w.A += k * mat3(1.0);
+    vec3 kr = k * r;
+    w.B -= mat3(0.0, kr.z, -kr.y, -kr.z, 0.0, kr.x, kr.y, -kr.x, 0.0);   // skew(kr)
+    w.D += mat3(k * (r2.y + r2.z), -k * r.x * r.y, -k * r.x * r.z,
+                -k * r.x * r.y, k * (r2.x + r2.z), -k * r.y * r.z,
+                -k * r.x * r.z, -k * r.y * r.z, k * (r2.x + r2.y));
+    w.D += pushed * length(r) * mat3(1.0);   // a point row's bend: its lever arm
+}
+
 // The three point rows: the anchors meet.
 void joint_point_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state s, float unit)
 {
-    float k = s.linear.w;
-    for (int i = 0; i < 3; i++) {
-        vec3 u = mat3(1.0)[i];   // world axis i
-        float lambda = s.linear[i];
-        float ki = k;
-        joint_hold(w, joint_point_row(p, u, p.d[i]), lambda, ki, unit, p.rb);
-        s.linear[i] = lambda;
-        s.linear.w = max(s.linear.w, ki);
-    }
+    joint_axes_rows(w, p, p.d, false, s.linear, unit);
 }
 
 // The three angular rows of a weld: B A^-1 is no turn.
 void joint_lock_rows(inout joint_work w, joint_pose p, inout tb_gpu_joint_state s, float unit)
 {
     vec3 theta = rotation_vector(quat_mul(p.fb, vec4(-p.fa.xyz, p.fa.w)));
-    float k = s.angular.w;
-    for (int i = 0; i < 3; i++) {
-        vec3 u = mat3(1.0)[i];   // world axis i
-        float lambda = s.angular[i];
-        float ki = k;
-        joint_row r = joint_turn_row(u, theta[i]);
-        r.bend = vec2(0.5);
-        joint_hold(w, r, lambda, ki, unit, p.rb);
-        s.angular[i] = lambda;
-        s.angular.w = max(s.angular.w, ki);
-    }
+    joint_axes_rows(w, p, theta, true, s.angular, unit);
 }
 
 // A hinge's axes stay aligned: c = x_A cross x_B is zero. Its change with b's turn t is
@@ -482,15 +528,16 @@ void joint_distance_rows(inout joint_work w, tb_gpu_joint jt, joint_pose p,
     s.axial.xy = vec2(lambda, k);
 }
 
-// Joint j's rows as the sweep has its bodies (a moved by dpa and turned by va since the
-// step began, b by dpb, vb): work w's mode says what to do with them; s is the joint's
-// state, updated in the dual.
-void joint_rows(inout joint_work w, uint j, inout tb_gpu_joint_state s, vec3 dpa, vec3 va,
-                vec3 dpb, vec3 vb)
+// Joint j's rows as the sweep has its bodies ab (its info.xy: the sweep knows them from
+// the list entry, so their poses need not wait for the joint's load; a moved by dpa and
+// turned by va since the step began, b by dpb, vb): work w's mode says what to do with
+// them; s is the joint's state, updated in the dual.
+void joint_rows(inout joint_work w, uint j, uvec2 ab, inout tb_gpu_joint_state s, vec3 dpa,
+                vec3 va, vec3 dpb, vec3 vb)
 {
     tb_gpu_joint jt = joints[j];
-    joint_pose p = joint_pose_of(jt, dpa, va, dpb, vb);
-    vec2 unit = joint_units(jt);
+    joint_pose p = joint_pose_of(jt, ab, dpa, va, dpb, vb);
+    vec2 unit = joint_units(ab);
     uint kind = joint_kind(jt);
     w.soft_hertz = joint_has(jt, TB_GPU_JOINT_SOFT) ? jt.lower.w : 0.0;
     w.soft_damping = jt.upper.w;
@@ -582,7 +629,7 @@ void joint_record_start(uint j, tb_gpu_joint_state s)
 {
     joint_work w = joint_work_primal(false);
     w.record = true;
-    joint_rows(w, j, s, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+    joint_rows(w, j, joints[j].info.xy, s, vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
 }
 
 // What the sweep's work with a joint's rows starts from: a primal's are added to body

@@ -57,7 +57,7 @@ void main()
         joint_states[j].torque = vec4(0.0);
         return;
     }
-    vec2 unit = joint_units(jt) * params.block.x;
+    vec2 unit = joint_units(jt.info.xy) * params.block.x;
     float warm = params.block_joints.y, carry = params.block_joints.z;
     uint kind = joint_kind(jt);
     // Last step's force and torque, and whether this step predicts with them: a joint that

@@ -360,13 +360,13 @@ void update_item(item it, uint order, vec3 my_dp, vec3 my_v, bool last)
 // A joint's rows, of its body b (is_b) or a and the other at dpa, va, dpb, vb: in the
 // primal added to the body's Newton step e, in the dual (once both bodies have moved)
 // their multipliers updated.
-void joint_item(inout newton e, uint j, bool is_b, bool dual, vec3 dpa, vec3 va, vec3 dpb,
-                vec3 vb)
+void joint_item(inout newton e, uint j, uvec2 ab, bool is_b, bool dual, vec3 dpa, vec3 va,
+                vec3 dpb, vec3 vb)
 {
     joint_work w = joint_work_of(dual, is_b, e.A, e.B, e.D, e.gl, e.ga, sweep_is_last,
                                  sweep_holds);
     tb_gpu_joint_state s = joint_states[j];
-    joint_rows(w, j, s, dpa, va, dpb, vb);
+    joint_rows(w, j, ab, s, dpa, va, dpb, vb);
     if (dual) {
         joint_store(j, s, w);
         return;
@@ -378,11 +378,12 @@ void joint_item(inout newton e, uint j, bool is_b, bool dual, vec3 dpa, vec3 va,
     e.ga = w.ga;
 }
 
-// List entry `entry` of the body (my_dp, my_v) at place `order` in the sweep: in the primal
+// List entry `entry` of body i (my_dp, my_v) at place `order` in the sweep: in the primal
 // (dual false) its rows go into the body's Newton step e; in the dual, if its other body
 // has already moved in this sweep (a static one, or one of an earlier place, block_order),
 // its multipliers are updated with both where the sweep leaves them.
-void sweep_item(inout newton e, uvec2 entry, uint order, bool dual, vec3 my_dp, vec3 my_v)
+void sweep_item(inout newton e, uvec2 entry, uint i, uint order, bool dual, vec3 my_dp,
+                vec3 my_v)
 {
     if (dual && !block_moved_before(body_colour[entry.y], order)) return;
     item it = item_of(entry);
@@ -390,7 +391,8 @@ void sweep_item(inout newton e, uvec2 entry, uint order, bool dual, vec3 my_dp, 
     vec3 dpa = is_b ? it.dp : my_dp, va = is_b ? it.v : my_v;
     vec3 dpb = is_b ? my_dp : it.dp, vb = is_b ? my_v : it.v;
     if (item_is_joint(it.entry))
-        joint_item(e, it.p, is_b, dual, dpa, va, dpb, vb);
+        joint_item(e, it.p, is_b ? uvec2(it.other, i) : uvec2(i, it.other), is_b, dual, dpa,
+                   va, dpb, vb);
     else if (dual)
         block_dual(it.p, it.k, it.q, dpa, va, dpb, vb, sweep_is_last);
     else
@@ -484,12 +486,12 @@ void solve_body(uvec4 listed, uint lane, bool valid, uint order)
     vec3 my_v = rotation_vector(solver_bodies[i].delta_rotation);
     newton e = no_newton();
     for (uint at = lane; at < items; at += BLOCK_LANES)
-        sweep_item(e, block_entries[first + at], order, false, my_dp, my_v);
+        sweep_item(e, block_entries[first + at], i, order, false, my_dp, my_v);
     newton sums = lanes_sum(e);
     if (!valid) return;
     move_body(sums, i, solver_bodies[i], lane, my_dp, my_v);
     for (uint at = lane; at < items; at += BLOCK_LANES)
-        sweep_item(e, block_entries[first + at], order, true, my_dp, my_v);
+        sweep_item(e, block_entries[first + at], i, order, true, my_dp, my_v);
 }
 #endif
 
@@ -551,10 +553,10 @@ void solve_tail()
 #else
         newton e = no_newton();
         for (uint at = lane; at < items; at += lanes)
-            sweep_item(e, block_entries[first + at], order, false, my_dp, my_v);
+            sweep_item(e, block_entries[first + at], i, order, false, my_dp, my_v);
         move_body(workgroup_sum(e), i, me, lane, my_dp, my_v);
         for (uint at = lane; at < items; at += lanes)
-            sweep_item(e, block_entries[first + at], order, true, my_dp, my_v);
+            sweep_item(e, block_entries[first + at], i, order, true, my_dp, my_v);
 #endif
         memoryBarrierBuffer();
         barrier();
