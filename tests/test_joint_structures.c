@@ -3,9 +3,12 @@
  * joints hold more conditions than their bodies have freedoms, stay still and closed over
  * hundreds of steps (both once shook themselves apart: a joint starts its step with a
  * smaller share of last step's multipliers and stiffness than a contact, block/joint_start),
- * and the net sweeps in the two colours its joint graph needs. */
+ * the net sweeps in the two colours its joint graph needs, and the bridge stands the same
+ * in a GPU's lanes a body. */
 #include "harness.h"
 
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "scenes.h"
@@ -87,12 +90,34 @@ static void test_bridge_carries_a_load(void** state)
     assert_true(sag > start - 0.5 && sag < start + 0.5);
 }
 
+/* The bridge again with a GPU's lanes (TUMBLE_GPU_LANES=1: 8 lanes a body share its entries
+ * and add up their Newton blocks by shuffles, which lavapipe otherwise solves one lane a
+ * body): the same bridge, to rounding, as one lane a body. */
+static void test_bridge_in_gpu_lanes(void** state)
+{
+    (void)state;
+    scene_checks one, eight;
+    run_scene("bridge", 40, 240, &one);
+    setenv("TUMBLE_GPU_LANES", "1", 1);
+    run_scene("bridge", 40, 240, &eight);
+    unsetenv("TUMBLE_GPU_LANES");
+    double gap = check_of(&eight, "max_gap"), sag = check_of(&eight, "sag");
+    print_message("  bridge in 8 lanes a body: largest gap %.3f mm (%.3f in one), sag %.4f m "
+                  "(%.4f)\n", 1000 * gap, 1000 * check_of(&one, "max_gap"), sag,
+                  check_of(&one, "sag"));
+    assert_true(check_of(&eight, "nan") == 0 && check_of(&eight, "load_fell") == 0);
+    assert_true(gap < 2e-3 && check_of(&eight, "max_twist") < 0.01);
+    assert_true(fabs(sag - check_of(&one, "sag")) < 1e-3);
+    assert_true(fabs(gap - check_of(&one, "max_gap")) < 1e-4);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_net_hangs_still),
         cmocka_unit_test(test_net_colours_in_two),
         cmocka_unit_test(test_bridge_carries_a_load),
+        cmocka_unit_test(test_bridge_in_gpu_lanes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

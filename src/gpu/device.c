@@ -241,6 +241,8 @@ static void read_device_facts(tb_gpu* gpu)
     gpu->subgroup_size = subgroup.subgroupSize;
     gpu->max_allocation = maintenance3.maxMemoryAllocationSize;
     gpu->is_cpu = gpu->props.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+    const char* gpu_lanes = getenv("TUMBLE_GPU_LANES");
+    gpu->kernels_for_cpu = gpu->is_cpu && !(gpu_lanes && strcmp(gpu_lanes, "1") == 0);
     snprintf(gpu->driver, sizeof gpu->driver, "%s %s", driver.driverName, driver.driverInfo);
     vkGetPhysicalDeviceMemoryProperties(gpu->physical, &gpu->memory_props);
     uint32_t count = 0;

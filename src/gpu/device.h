@@ -20,6 +20,10 @@ typedef struct tb_gpu {
     VkDeviceSize max_allocation;     ///< maxMemoryAllocationSize: the largest single buffer
     uint32_t timestamp_valid_bits;  ///< 0: the queue has no timestamps
     int is_cpu;
+    /// The kernels' CPU_DEVICE (glsl/common/world.glsl): is_cpu, unless TUMBLE_GPU_LANES=1
+    /// runs a CPU device's kernels as a GPU's (the sweeps' lanes a body, the subgroup
+    /// sums), so that tests on lavapipe cover them too.
+    int kernels_for_cpu;
     VkCommandPool command_pool;     ///< resettable command buffers, compute queue
     VkFence fence;                  ///< one submission in flight at a time
     PFN_vkCmdBeginDebugUtilsLabelEXT begin_label; ///< NULL without debug utils

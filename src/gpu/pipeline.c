@@ -303,7 +303,7 @@ tb_result tb_pipeline_create_from(tb_pipelines* p, const char* name, const uint3
     tb_result r = tb_vk_check(diag, vkCreateShaderModule(p->gpu->device, &module_info, NULL, &module),
                               "vkCreateShaderModule");
     if (r) return r;
-    uint32_t values[3] = { workgroup_size, p->gpu->subgroup_size, p->gpu->is_cpu ? 1u : 0u };
+    uint32_t values[3] = { workgroup_size, p->gpu->subgroup_size, p->gpu->kernels_for_cpu ? 1u : 0u };
     VkSpecializationMapEntry entries[3] = {
         { TB_SPEC_WORKGROUP_SIZE, 0, sizeof(uint32_t) },
         { TB_SPEC_SUBGROUP_SIZE, sizeof(uint32_t), sizeof(uint32_t) },
