@@ -180,18 +180,25 @@ void joint_apply(inout joint_work w, joint_row r, inout float lambda, inout floa
 }
 
 // A spring of frequency `hertz` and damping ratio `damping` on the bodies' effective mass
-// (or moment, unit h^2) along a row whose value C is the coordinate's distance from where
-// the spring pulls to and `moved` its change over the step so far; stepped implicitly, its
-// stiffness k and damping c over the step act as k + c / dt: a row of multiplier `lambda`
-// at C = 0 with that `stiffness`.
-void joint_spring(float C, float moved, float unit, float hertz, float damping,
-                  out float lambda, out float stiffness)
+// (or moment, unit h^2): its stiffness k and damping c.
+vec2 joint_spring_gains(float unit, float hertz, float damping)
 {
     float h = block_h(), omega = 6.2831853 * hertz;
     float mass = unit * h * h;
-    float k = mass * omega * omega, c = 2.0 * mass * damping * omega;
-    lambda = -(k * C + c * moved / h);
-    stiffness = k + c / h;
+    return vec2(mass * omega * omega, 2.0 * mass * damping * omega);
+}
+
+// That spring along a row whose value C is the coordinate's distance from where the spring
+// pulls to and `moved` its change over the step so far; stepped implicitly, its stiffness
+// and damping over the step act as k + c / dt: a row of multiplier `lambda` at C = 0 with
+// that `stiffness`.
+void joint_spring(float C, float moved, float unit, float hertz, float damping,
+                  out float lambda, out float stiffness)
+{
+    float h = block_h();
+    vec2 kc = joint_spring_gains(unit, hertz, damping);
+    lambda = -(kc.x * C + kc.y * moved / h);
+    stiffness = kc.x + kc.y / h;
 }
 
 void joint_spring_row(inout joint_work w, joint_row r, float moved, float unit, float hertz,
@@ -264,10 +271,10 @@ void joint_axes_rows(inout joint_work w, joint_pose p, vec3 C, bool turn, inout 
         // The rows' change over the step so far, and the spring's multipliers and stiffness.
         vec3 moved = turn ? w.vb - w.va
                           : (w.dpb + cross(w.vb, p.rb)) - (w.dpa + cross(w.va, p.ra));
-        float h = block_h(), omega = 6.2831853 * w.soft_hertz, mass = unit * h * h;
-        float ks = mass * omega * omega, c = 2.0 * mass * w.soft_damping * omega;
-        lambda = -(ks * C + c * moved / h);
-        k = ks + c / h;
+        float h = block_h();
+        vec2 kc = joint_spring_gains(unit, w.soft_hertz, w.soft_damping);
+        lambda = -(kc.x * C + kc.y * moved / h);
+        k = kc.x + kc.y / h;
         C = vec3(0.0);
     } else if (w.hold_start) {
         C -= vec3(joint_start_error(w.joint, n), joint_start_error(w.joint, n + 1u),
