@@ -61,20 +61,22 @@ void main()
     float warm = params.block_joints.y, carry = params.block_joints.z;
     uint kind = joint_kind(jt);
     // Last step's force and torque, and whether this step predicts with them: a joint that
-    // is all its dynamic bodies have (a pendulum's rod; no other joint, no contact) and
-    // whose force is about their weights does, so its bodies swing on their circle instead
-    // of out past it each step to be pulled back along the radius, which cost a 1 m
-    // pendulum 28 % of its energy a period (0.08 % over ten periods with the prediction).
-    // Where a body has more (a chain's links), the predicted forces and torques from its
-    // several joints are explicit stiff terms on a light body: with them a hanging chain of
-    // three started to swing by itself, and one with a heavy end blew up.
+    // is all its dynamic bodies have (a pendulum's rod; no other joint, no contact) does,
+    // so its bodies swing on their circle instead of out past it each step to be pulled
+    // back along the radius, which cost a 1 m pendulum 28 % of its energy a period (0.08 %
+    // over ten periods with the prediction). Where a body has more (a chain's links), the
+    // predicted forces and torques from its several joints are explicit stiff terms on a
+    // light body: with them a hanging chain of three started to swing by itself, and one
+    // with a heavy end blew up. A bound on the force as well (twice the lighter body's
+    // weight, from before `alone`) made a pendulum let go level lose its swing until its
+    // tension at the bottom was within the bound, at 60 degrees: it turned at 2.76, 2.63,
+    // 2.55, 2.51, 2.50 m of the 3 m it started at (lavapipe; tools/python/README.md's
+    // pendulum), and turns at 2.999, 2.996, 2.994, ... without it.
     vec3 force = s.held_force.xyz + s.linear.xyz, torque = s.held_torque.xyz + s.angular.xyz;
     uint a = jt.info.x, b = jt.info.y;
     bool alone = (!block_dynamic(a) || block_fill[a] == 1u) &&
                  (!block_dynamic(b) || block_fill[b] == 1u);
-    float lightest = 1.0 / max(max(body_pos[a].w, body_pos[b].w), 1e-30);
-    bool predict = joint_may_hold(kind) && alone &&
-                   length(force) <= 2.0 * lightest * length(params.gravity.xyz);
+    bool predict = joint_may_hold(kind) && alone;
     s.held_force = predict ? vec4(force, 1.0) : vec4(0.0);
     s.held_torque = predict ? vec4(torque, 0.0) : vec4(0.0);
     vec3 linear = predict ? vec3(0.0) : (joint_may_hold(kind) ? force : s.linear.xyz) * warm;
