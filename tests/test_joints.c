@@ -1,6 +1,6 @@
 /* Joints on the GPU (lavapipe, validation on): a pendulum against its analytic period and
- * energy (and let go level, its swing), a weld, a chain with a heavy end, a hinge's limit and motor, a
- * slider, breaking, collide_connected, distance ropes and springs, repeatability, and the
+ * energy (and let go level, its swing), a weld, a chain with a heavy end, a hinge's limit
+ * and motor, a slider, breaking, collide_connected, distance ropes and springs, repeatability, and the
  * API's refusals. */
 #include "harness.h"
 
@@ -12,6 +12,18 @@
 #define PI 3.14159265358979323846
 #define G 9.81
 
+/* A ball of radius 0.1 m and `mass` kg at `at`, hung from a static post at `pivot` by a
+ * ball joint there: the joint's def, which the caller makes (th_joint) once it is set. */
+static tb_joint_def ball_on_post(tb_world* w, tb_vec3 pivot, tb_vec3 at, float mass,
+                                 tb_body_id* bob)
+{
+    tb_body_id top = th_post(w, pivot);
+    tb_body_def bd = th_dynamic_def(th_sphere(w, 0.1f), at);
+    bd.mass = mass;
+    *bob = th_body(w, &bd);
+    return th_joint_def_at(w, TB_JOINT_BALL, top, *bob, pivot, th_v3(0, 0, 1));
+}
+
 /* A ball of radius r and mass m hung by a ball joint L below a post, pulled aside by
  * theta0 about z, let go: over ten periods its swing's period matches the physical
  * pendulum's (with the ball's own inertia, and the amplitude's correction) within 1 %, and
@@ -22,13 +34,11 @@ static void test_pendulum(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    const double L = 1.0, r = 0.1, m = 1.0, theta0 = 0.1;
-    tb_body_id top = th_post(w, th_v3(0, 0, 0));
-    tb_body_def bd = th_dynamic_def(th_sphere(w, (float)r),
-                                    th_v3((float)(L * sin(theta0)), (float)(-L * cos(theta0)), 0));
-    bd.mass = (float)m;
-    tb_body_id bob = th_body(w, &bd);
-    tb_joint_def jd = th_joint_def_at(w, TB_JOINT_BALL, top, bob, th_v3(0, 0, 0), th_v3(0, 0, 1));
+    const double L = 1.0, r = 0.1, m = 1.0, theta0 = 0.1;   /* r: ball_on_post's ball */
+    tb_body_id bob;
+    tb_joint_def jd = ball_on_post(w, th_v3(0, 0, 0),
+                                   th_v3((float)(L * sin(theta0)), (float)(-L * cos(theta0)), 0),
+                                   (float)m, &bob);
     th_joint(w, &jd);
     double inertia = m * L * L + 0.4 * m * r * r;
     double period = 2 * PI * sqrt(inertia / (m * G * L)) * (1 + theta0 * theta0 / 16);
@@ -75,11 +85,8 @@ static void test_wide_swing(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = th_post(w, th_v3(0, 3, 0));
-    tb_body_def bd = th_dynamic_def(th_sphere(w, 0.1f), th_v3(1, 3, 0));
-    bd.mass = 2;
-    tb_body_id bob = th_body(w, &bd);
-    tb_joint_def jd = th_joint_def_at(w, TB_JOINT_BALL, top, bob, th_v3(0, 3, 0), th_v3(0, 0, 1));
+    tb_body_id bob;
+    tb_joint_def jd = ball_on_post(w, th_v3(0, 3, 0), th_v3(1, 3, 0), 2, &bob);
     th_joint(w, &jd);
     double y[3] = { 3, 3, 3 }, turns[4];
     int found = 0;
@@ -369,12 +376,8 @@ static void test_break(void** state)
 {
     (void)state;
     tb_world* w = th_world_create(NULL);
-    tb_body_id top = th_post(w, th_v3(0, 2, 0));
-    tb_body_def d = th_dynamic_def(th_sphere(w, 0.1f), th_v3(0, 1.5f, 0));
-    d.mass = 2;
-    tb_body_id weight = th_body(w, &d);
-    tb_joint_def strong = th_joint_def_at(w, TB_JOINT_BALL, top, weight, th_v3(0, 2, 0),
-                                       th_v3(1, 0, 0));
+    tb_body_id weight;
+    tb_joint_def strong = ball_on_post(w, th_v3(0, 2, 0), th_v3(0, 1.5f, 0), 2, &weight);
     strong.break_force = 40;
     tb_joint_def weak = strong;
     weak.break_force = 10;

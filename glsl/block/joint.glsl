@@ -219,6 +219,12 @@ float joint_start_error(uint j, uint n)
     return n < JOINT_START_ROWS ? joint_states[j].start_error[n >> 2][n & 3u] : 0.0;
 }
 
+// Keep C as that error (block/joint_start, joint_record_start).
+void joint_record_start_error(uint j, uint n, float C)
+{
+    if (n < JOINT_START_ROWS) joint_states[j].start_error[n >> 2][n & 3u] = C;
+}
+
 // An equality row: hard (its multiplier and stiffness), or in a soft joint a spring to 0.
 // In the step's first sweeps a hard row holds the error its step began with (sweep_set,
 // solve.glsl); the later sweeps close it.
@@ -227,7 +233,7 @@ void joint_hold(inout joint_work w, joint_row r, inout float lambda, inout float
 {
     uint n = w.holds++;
     if (w.record) {
-        if (n < JOINT_START_ROWS) joint_states[w.joint].start_error[n >> 2][n & 3u] = r.C;
+        joint_record_start_error(w.joint, n, r.C);
         return;
     }
     // One joint_apply for both ways, so each row of a kind is one copy of it in the sweep.
@@ -260,8 +266,7 @@ void joint_axes_rows(inout joint_work w, joint_pose p, vec3 C, bool turn, inout 
     uint n = w.holds;
     w.holds += 3u;
     if (w.record) {
-        for (uint i = 0u; i < 3u; i++)
-            if (n + i < JOINT_START_ROWS) joint_states[w.joint].start_error[(n + i) >> 2][(n + i) & 3u] = C[i];
+        for (uint i = 0u; i < 3u; i++) joint_record_start_error(w.joint, n + i, C[i]);
         return;
     }
     vec3 lambda = state.xyz;
